@@ -1,0 +1,68 @@
+// Triangulation of the ball centre from any number of cameras (paper §3.2, Figure 6): the point
+// closest, in the least-squares sense, to all viewing rays.
+//
+// Frames: rays and points in the world frame, metres; observations in pixels of each camera.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "p4/geometry/camera.h"
+
+namespace p4 {
+
+struct Ray {
+  Eigen::Vector3d origin;     // world, metres
+  Eigen::Vector3d direction;  // world, unit length
+};
+
+struct TriangulationOptions {
+  // Smallest accepted ratio of the smallest to the largest eigenvalue of sum(I - d d^T); near
+  // zero when all rays are (anti)parallel and depth along them is unknown.
+  double min_conditioning = 1e-4;
+  // Reject a point that lies behind (or closer than this to) the origin of any ray, metres.
+  double min_depth = 0.05;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TriangulationResult {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world, metres
+  double rms_ray_distance = 0.0;  // RMS distance from the point to the rays, metres
+  double conditioning = 0.0;      // lambda_min / lambda_max of the normal matrix, in [0, 1]
+};
+
+// Least-squares point closest to at least two rays. nullopt for fewer than two rays, for
+// (anti)parallel rays (conditioning below the option) or a point behind a ray's origin.
+std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
+                                                   const TriangulationOptions& options = {});
+
+// One camera's view of the ball.
+struct Observation {
+  int camera = 0;           // index into the camera list
+  Eigen::Vector2d pixel;    // distorted pixel of the ball centre
+};
+
+struct PointEstimate {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world, metres
+  double mean_reprojection_px = 0.0;  // mean over the observations
+  double conditioning = 0.0;
+  int num_views = 0;
+};
+
+// Triangulates observations of the same point in several cameras, and reports the mean
+// reprojection error. Preconditions: observation camera indices are valid for `cameras`.
+std::optional<PointEstimate> TriangulateObservations(std::span<const Camera> cameras,
+                                                     std::span<const Observation> observations,
+                                                     const TriangulationOptions& options = {});
+
+// Mean distance in pixels between the observations and the projection of `point`.
+double MeanReprojectionError(std::span<const Camera> cameras,
+                             std::span<const Observation> observations,
+                             const Eigen::Vector3d& point);
+
+}  // namespace p4

@@ -1,0 +1,105 @@
+#include "p4/geometry/triangulation.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "p4/geometry/test_cameras.h"
+
+namespace p4 {
+namespace {
+
+std::vector<Observation> Observe(const std::vector<Camera>& cameras, const Eigen::Vector3d& point,
+                                 int count) {
+  std::vector<Observation> observations;
+  for (int i = 0; i < count; ++i) {
+    const auto pixel = cameras[i].Project(point);
+    if (pixel) observations.push_back({i, *pixel});
+  }
+  return observations;
+}
+
+TEST(Triangulation, ExactFromTwoThreeAndFourCameras) {
+  const auto cameras = testing::ClubCameras();
+  const Eigen::Vector3d point(0.9, -0.2, 0.3);
+  for (int count = 2; count <= 4; ++count) {
+    const auto observations = Observe(cameras, point, count);
+    ASSERT_EQ(static_cast<int>(observations.size()), count);
+    const auto estimate = TriangulateObservations(cameras, observations);
+    ASSERT_TRUE(estimate.has_value()) << count;
+    EXPECT_NEAR((estimate->point - point).norm(), 0.0, 1e-8) << count;
+    EXPECT_NEAR(estimate->mean_reprojection_px, 0.0, 1e-6);
+    EXPECT_EQ(estimate->num_views, count);
+    EXPECT_GT(estimate->conditioning, 0.01);
+  }
+}
+
+TEST(Triangulation, NoiseOfHalfAPixelGivesMillimetres) {
+  const auto cameras = testing::ClubCameras();
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  double sum_sq = 0.0;
+  const int trials = 200;
+  for (int k = 0; k < trials; ++k) {
+    const Eigen::Vector3d point(-1.2 + 0.012 * k, 0.5 - 0.005 * k, 0.05 + 0.002 * k);
+    auto observations = Observe(cameras, point, 3);
+    for (auto& obs : observations) obs.pixel += Eigen::Vector2d(noise(rng), noise(rng));
+    const auto estimate = TriangulateObservations(cameras, observations);
+    ASSERT_TRUE(estimate.has_value());
+    sum_sq += (estimate->point - point).squaredNorm();
+    EXPECT_LT(estimate->mean_reprojection_px, 2.0);
+  }
+  const double rmse_mm = 1000.0 * std::sqrt(sum_sq / trials);
+  EXPECT_LT(rmse_mm, 3.0);  // cameras 3.5-4.5 m away, f = 1000 px: ~2 mm per pixel
+  EXPECT_GT(rmse_mm, 0.05);
+}
+
+TEST(Triangulation, OneCameraOnly) {
+  const auto cameras = testing::ClubCameras();
+  const auto observations = Observe(cameras, {0.0, 0.0, 0.2}, 1);
+  EXPECT_FALSE(TriangulateObservations(cameras, observations).has_value());
+  const std::vector<Ray> one{{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()}};
+  EXPECT_FALSE(TriangulateRays(one).has_value());
+}
+
+TEST(Triangulation, ParallelRays) {
+  const std::vector<Ray> parallel{{{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                                  {{0.0, 0.1, 0.0}, {1.0, 0.0, 0.0}}};
+  EXPECT_FALSE(TriangulateRays(parallel).has_value());
+  // Nearly parallel (0.01 degree apart): rejected by the conditioning bound.
+  const double a = 0.01 * M_PI / 180.0;
+  const std::vector<Ray> nearly{{{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                                {{0.0, 0.1, 0.0}, {std::cos(a), -std::sin(a), 0.0}}};
+  EXPECT_FALSE(TriangulateRays(nearly).has_value());
+  TriangulationOptions loose;
+  loose.min_conditioning = 0.0;
+  EXPECT_TRUE(TriangulateRays(nearly, loose).has_value());
+}
+
+TEST(Triangulation, PointBehindACamera) {
+  // Two rays whose closest point lies behind the second ray's origin.
+  const std::vector<Ray> rays{{{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                              {{2.0, -1.0, 0.0}, Eigen::Vector3d(0.0, -1.0, 0.0)}};
+  EXPECT_FALSE(TriangulateRays(rays).has_value());
+  const std::vector<Ray> good{{{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                              {{2.0, -1.0, 0.0}, Eigen::Vector3d(0.0, 1.0, 0.0)}};
+  const auto result = TriangulateRays(good);
+  ASSERT_TRUE(result.has_value());
+  EXPECT_NEAR((result->point - Eigen::Vector3d(2.0, 0.0, 0.0)).norm(), 0.0, 1e-12);
+}
+
+TEST(Triangulation, SkewRaysGiveTheMidpointAndTheirDistance) {
+  const std::vector<Ray> rays{{{-1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                              {{0.0, -1.0, 0.02}, Eigen::Vector3d(0.0, 1.0, 0.0)}};
+  const auto result = TriangulateRays(rays);
+  ASSERT_TRUE(result.has_value());
+  EXPECT_NEAR((result->point - Eigen::Vector3d(0.0, 0.0, 0.01)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(result->rms_ray_distance, 0.01, 1e-12);
+  TriangulationOptions bad;
+  bad.min_conditioning = 2.0;
+  std::string error;
+  EXPECT_FALSE(bad.IsValid(&error));
+}
+
+}  // namespace
+}  // namespace p4
