@@ -1,0 +1,202 @@
+#include "p4/io/rig_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "p4/core/error.h"
+
+namespace p4 {
+namespace {
+
+// Flattens a matrix node into numbers; accepts an opencv-matrix map or a (nested) list.
+bool ReadNumbers(const cv::FileNode& node, std::vector<double>* values, int* rows, int* cols,
+                 std::string* why) {
+  values->clear();
+  if (node.isMap()) {
+    const cv::FileNode data = node["data"];
+    if (node["rows"].empty() || node["cols"].empty() || data.empty()) {
+      *why = "expected a matrix with rows, cols and data";
+      return false;
+    }
+    *rows = static_cast<int>(node["rows"]);
+    *cols = static_cast<int>(node["cols"]);
+    for (const auto& item : data) {
+      if (!item.isReal() && !item.isInt()) {
+        *why = "data holds a value that is not a number";
+        return false;
+      }
+      values->push_back(static_cast<double>(item));
+    }
+    if (static_cast<int>(values->size()) != *rows * *cols) {
+      *why = "data has " + std::to_string(values->size()) + " numbers for a " +
+             std::to_string(*rows) + "x" + std::to_string(*cols) + " matrix";
+      return false;
+    }
+    return true;
+  }
+  if (node.isSeq()) {
+    *rows = 0;
+    *cols = -1;
+    for (const auto& row : node) {
+      if (row.isSeq()) {
+        const int before = static_cast<int>(values->size());
+        for (const auto& item : row) {
+          if (!item.isReal() && !item.isInt()) {
+            *why = "holds a value that is not a number";
+            return false;
+          }
+          values->push_back(static_cast<double>(item));
+        }
+        const int n = static_cast<int>(values->size()) - before;
+        if (*cols >= 0 && n != *cols) {
+          *why = "rows of different lengths";
+          return false;
+        }
+        *cols = n;
+        ++*rows;
+      } else if (row.isReal() || row.isInt()) {
+        values->push_back(static_cast<double>(row));
+      } else {
+        *why = "holds a value that is not a number";
+        return false;
+      }
+    }
+    if (*cols < 0) {  // a flat list
+      *rows = 1;
+      *cols = static_cast<int>(values->size());
+    }
+    return true;
+  }
+  *why = "expected a matrix";
+  return false;
+}
+
+std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& key,
+                               int want_rows, int want_cols, bool either_orientation,
+                               const std::string& where) {
+  const cv::FileNode node = camera[key];
+  if (node.empty()) throw Error(where + ": missing '" + key + "'");
+  std::vector<double> values;
+  int rows = 0, cols = 0;
+  std::string why;
+  if (!ReadNumbers(node, &values, &rows, &cols, &why)) throw Error(where + ": " + key + ": " + why);
+  const bool size_ok = (rows == want_rows && cols == want_cols) ||
+                       (either_orientation && rows == want_cols && cols == want_rows) ||
+                       (rows == 1 && cols == want_rows * want_cols);  // flat list
+  if (!size_ok) {
+    throw Error(where + ": " + key + ": expected a " + std::to_string(want_rows) + "x" +
+                std::to_string(want_cols) + " matrix, got " + std::to_string(rows) + "x" +
+                std::to_string(cols));
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw Error(where + ": " + key + ": element " + std::to_string(i) + " is not finite");
+    }
+  }
+  return values;
+}
+
+int ReadPositiveInt(const cv::FileNode& camera, const std::string& key, const std::string& where) {
+  const cv::FileNode node = camera[key];
+  if (node.empty()) throw Error(where + ": missing '" + key + "'");
+  if (!node.isInt()) throw Error(where + ": " + key + ": expected an integer");
+  const int value = static_cast<int>(node);
+  if (value <= 0) throw Error(where + ": " + key + ": must be positive (got " + std::to_string(value) + ")");
+  return value;
+}
+
+cv::Mat ToMat(const double* data, int rows, int cols) {
+  cv::Mat mat(rows, cols, CV_64F);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) mat.at<double>(r, c) = data[r * cols + c];
+  }
+  return mat;
+}
+
+}  // namespace
+
+Rig ReadRig(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(path, cv::FileStorage::READ)) throw Error(path + ": cannot open or parse the file");
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": cannot parse the file (" + e.msg + ")");
+  }
+  const cv::FileNode cameras = fs["cameras"];
+  if (cameras.empty() || !cameras.isSeq()) throw Error(path + ": missing 'cameras' list");
+  Rig rig;
+  int index = 0;
+  for (const auto& node : cameras) {
+    std::string where = path + ": cameras[" + std::to_string(index) + "]";
+    if (!node.isMap()) throw Error(where + ": expected a map of camera fields");
+    Camera camera;
+    if (node["name"].empty() || !node["name"].isString()) throw Error(where + ": missing 'name'");
+    camera.name = static_cast<std::string>(node["name"]);
+    where += " '" + camera.name + "'";
+    camera.width = ReadPositiveInt(node, "image_width", where);
+    camera.height = ReadPositiveInt(node, "image_height", where);
+    const auto k = ReadMatrix(node, "camera_matrix", 3, 3, false, where);
+    if (k[1] != 0.0 || k[3] != 0.0 || k[6] != 0.0 || k[7] != 0.0 || k[8] != 1.0) {
+      throw Error(where + ": camera_matrix: expected [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
+    }
+    camera.fx = k[0];
+    camera.cx = k[2];
+    camera.fy = k[4];
+    camera.cy = k[5];
+    if (!node["distortion_coefficients"].empty()) {
+      const auto d = ReadMatrix(node, "distortion_coefficients", 1, 5, true, where);
+      std::copy(d.begin(), d.end(), camera.distortion.begin());
+    }
+    const auto r = ReadMatrix(node, "rotation", 3, 3, false, where);
+    const auto t = ReadMatrix(node, "translation", 3, 1, true, where);
+    camera.cam_from_world.rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
+    camera.cam_from_world.translation = Eigen::Vector3d(t[0], t[1], t[2]);
+    std::string why;
+    if (!ValidateCamera(camera, &why)) throw Error(where + ": " + why);
+    rig.cameras.push_back(camera);
+    ++index;
+  }
+  std::string why;
+  if (!ValidateRig(rig, &why)) throw Error(path + ": " + why);
+  return rig;
+}
+
+void WriteRig(const Rig& rig, const std::string& path) {
+  std::string why;
+  if (!ValidateRig(rig, &why)) throw Error(path + ": refusing to write an invalid rig: " + why);
+  const std::filesystem::path target(path);
+  // Keep the extension on the temporary file: FileStorage picks the format from it.
+  const std::filesystem::path temporary =
+      target.parent_path() / (".tmp-" + target.stem().string() + target.extension().string());
+  try {
+    cv::FileStorage fs(temporary.string(), cv::FileStorage::WRITE);
+    if (!fs.isOpened()) throw Error(path + ": cannot write the file");
+    fs << "cameras" << "[";
+    for (const Camera& camera : rig.cameras) {
+      fs << "{";
+      fs << "name" << camera.name;
+      fs << "image_width" << camera.width << "image_height" << camera.height;
+      const Eigen::Matrix3d k = camera.K();
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> k_rm = k;
+      fs << "camera_matrix" << ToMat(k_rm.data(), 3, 3);
+      fs << "distortion_coefficients" << ToMat(camera.distortion.data(), 1, 5);
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> r = camera.cam_from_world.rotation;
+      fs << "rotation" << ToMat(r.data(), 3, 3);
+      fs << "translation" << ToMat(camera.cam_from_world.translation.data(), 3, 1);
+      fs << "}";
+    }
+    fs << "]";
+    fs.release();
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": cannot write the file (" + e.msg + ")");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, target, ec);
+  if (ec) throw Error(path + ": cannot write the file (" + ec.message() + ")");
+}
+
+}  // namespace p4
