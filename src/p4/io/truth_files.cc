@@ -1,0 +1,105 @@
+#include "p4/io/truth_files.h"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <opencv2/core.hpp>
+
+#include "p4/core/error.h"
+
+namespace p4 {
+namespace {
+
+std::ofstream OpenOut(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw Error(path + ": cannot create the file");
+  return out;
+}
+
+double Round(double x, double unit) { return std::round(x / unit) * unit; }
+
+}  // namespace
+
+void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, int fps,
+                   int64_t frames) {
+  std::ofstream out = OpenOut(path);
+  out << "t,x,y,z,vx,vy,vz,wx,wy,wz,in_play\n";
+  for (int64_t k = 0; k < frames; ++k) {
+    const double t = static_cast<double>(k) / fps;
+    const auto s = trajectory.At(t);
+    if (!s) {
+      out << fmt::format("{:.6f},,,,,,,,,,0\n", t);
+      continue;
+    }
+    const auto& p = s->position;
+    const auto& v = s->velocity;
+    const auto& w = s->spin;
+    out << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.5f},{:.5f},{:.5f},{:.3f},{:.3f},{:.3f},1\n", t,
+                       p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
+  }
+  if (!out) throw Error(path + ": write failed");
+}
+
+nlohmann::json EventToJson(const sim::TruthEvent& e) {
+  nlohmann::json j;
+  j["t"] = Round(e.t, 1e-6);
+  j["type"] = e.type;
+  if (e.player) j["player"] = std::string(1, e.player);
+  if (e.side) j["side"] = std::string(1, e.side);
+  if (e.position) {
+    j["x"] = Round(e.position->x(), 1e-6);
+    j["y"] = Round(e.position->y(), 1e-6);
+    j["z"] = Round(e.position->z(), 1e-6);
+  }
+  if (e.winner) {
+    j["winner"] = std::string(1, e.winner);
+    if (!e.reason.empty()) j["reason"] = e.reason;
+    j["score"] = e.score;
+    j["games"] = e.games;
+  }
+  return j;
+}
+
+void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent>& events) {
+  std::ofstream out = OpenOut(path);
+  for (const auto& e : events) out << EventToJson(e).dump() << '\n';
+  if (!out) throw Error(path + ": write failed");
+}
+
+nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played) {
+  nlohmann::json j;
+  j["players"] = {"A", "B"};
+  j["best_of"] = score.best_of();
+  j["points_played"] = points_played;
+  j["score"] = score.points();
+  j["games"] = score.games();
+  j["finished_games"] = score.finished_games();
+  j["match_over"] = score.match_over();
+  j["winner"] = score.match_over() ? nlohmann::json(std::string(1, score.match_winner())) : nlohmann::json();
+  j["next_server"] = std::string(1, score.Server());
+  return j;
+}
+
+void WriteJson(const std::string& path, const nlohmann::json& json) {
+  std::ofstream out = OpenOut(path);
+  out << json.dump(2) << '\n';
+  if (!out) throw Error(path + ": write failed");
+}
+
+void WriteMarkerLayout(const std::string& path, const std::vector<sim::MarkerQuad>& markers,
+                       const std::string& dictionary) {
+  cv::FileStorage fs(path, cv::FileStorage::WRITE);
+  if (!fs.isOpened()) throw Error(path + ": cannot create the file");
+  fs << "dictionary" << dictionary;
+  fs << "markers" << "[";
+  for (const auto& m : markers) {
+    cv::Mat corners(4, 3, CV_64F);
+    for (int i = 0; i < 4; ++i) {
+      for (int k = 0; k < 3; ++k) corners.at<double>(i, k) = m.corners[i][k];
+    }
+    fs << "{" << "id" << m.id << "corners" << corners << "}";
+  }
+  fs << "]";
+}
+
+}  // namespace p4

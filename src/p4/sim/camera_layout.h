@@ -1,0 +1,20 @@
+// Where a club puts its cameras: high behind each end and at the sides of the table. Used by the
+// simulator (and by tests) to build a rig of N cameras for an image size.
+#pragma once
+
+#include "p4/geometry/rig.h"
+#include "p4/sim/scene.h"
+#include "p4/sim/trajectory.h"
+
+namespace p4::sim {
+
+// Cameras in this order: side (y < 0), behind A (high), behind B (high), other side, then the
+// four corners. n in [1, 8]; focal length 0.78 * width (about 65 degrees across); optional
+// moderate barrel distortion (k1 = -0.08, k2 = 0.02) as webcams have.
+Rig ClubRig(int n, int width, int height, bool distortion);
+
+// The scene content at frame time t: `exposure` seconds centred on t, sampled every ~2 mm of
+// ball travel (1 to 64 samples); players follow the ball across their end.
+FrameContent ContentAt(const Trajectory& trajectory, double t, double exposure);
+
+}  // namespace p4::sim
