@@ -7,10 +7,11 @@ function(p4_library)
   target_compile_options(${ARG_NAME} PRIVATE -Wall -Wextra -Wpedantic)
 endfunction()
 
-# p4_test(NAME name SOURCES ... DEPS ...): one GoogleTest binary; tests run from the project
-# root so that ../shared/data resolves as P4_SHARED_DATA.
+# p4_test(NAME name SOURCES ... DEPS ... [WHOLE]): one GoogleTest binary, run from the project
+# root. Each TEST becomes a CTest test, unless WHOLE: then the binary is one CTest test (for
+# end-to-end suites whose fixture does expensive work once).
 function(p4_test)
-  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "WHOLE" "NAME" "SOURCES;DEPS" ${ARGN})
   if(NOT P4_BUILD_TESTS)
     return()
   endif()
@@ -19,6 +20,10 @@ function(p4_test)
   target_compile_definitions(${ARG_NAME} PRIVATE
     P4_SHARED_DATA="${PROJECT_SOURCE_DIR}/../shared/data"
     P4_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-  gtest_discover_tests(${ARG_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    DISCOVERY_TIMEOUT 60)
+  if(ARG_WHOLE)
+    add_test(NAME ${ARG_NAME} COMMAND ${ARG_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  else()
+    gtest_discover_tests(${ARG_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+      DISCOVERY_TIMEOUT 60)
+  endif()
 endfunction()

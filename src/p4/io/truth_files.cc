@@ -16,8 +16,6 @@ std::ofstream OpenOut(const std::string& path) {
   return out;
 }
 
-double Round(double x, double unit) { return std::round(x / unit) * unit; }
-
 }  // namespace
 
 void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, int fps,
@@ -40,29 +38,26 @@ void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, i
   if (!out) throw Error(path + ": write failed");
 }
 
-nlohmann::json EventToJson(const sim::TruthEvent& e) {
-  nlohmann::json j;
-  j["t"] = Round(e.t, 1e-6);
-  j["type"] = e.type;
-  if (e.player) j["player"] = std::string(1, e.player);
-  if (e.side) j["side"] = std::string(1, e.side);
+std::string EventToJsonLine(const sim::TruthEvent& e) {
+  std::string line = fmt::format("{{\"t\":{:.6f},\"type\":\"{}\"", e.t, e.type);
+  if (e.player) line += fmt::format(",\"player\":\"{}\"", e.player);
+  if (e.side) line += fmt::format(",\"side\":\"{}\"", e.side);
   if (e.position) {
-    j["x"] = Round(e.position->x(), 1e-6);
-    j["y"] = Round(e.position->y(), 1e-6);
-    j["z"] = Round(e.position->z(), 1e-6);
+    line += fmt::format(",\"x\":{:.6f},\"y\":{:.6f},\"z\":{:.6f}", e.position->x(),
+                        e.position->y(), e.position->z());
   }
   if (e.winner) {
-    j["winner"] = std::string(1, e.winner);
-    if (!e.reason.empty()) j["reason"] = e.reason;
-    j["score"] = e.score;
-    j["games"] = e.games;
+    line += fmt::format(",\"winner\":\"{}\"", e.winner);
+    if (!e.reason.empty()) line += fmt::format(",\"reason\":\"{}\"", e.reason);
+    line += fmt::format(",\"score\":[{},{}],\"games\":[{},{}]", e.score[0], e.score[1],
+                        e.games[0], e.games[1]);
   }
-  return j;
+  return line + "}";
 }
 
 void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent>& events) {
   std::ofstream out = OpenOut(path);
-  for (const auto& e : events) out << EventToJson(e).dump() << '\n';
+  for (const auto& e : events) out << EventToJsonLine(e) << '\n';
   if (!out) throw Error(path + ": write failed");
 }
 

@@ -18,7 +18,8 @@ namespace p4 {
 void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, int fps,
                    int64_t frames);
 
-nlohmann::json EventToJson(const sim::TruthEvent& event);
+// One JSON object on one line, keys in DESIGN.md's order, numbers to the microsecond/micrometre.
+std::string EventToJsonLine(const sim::TruthEvent& event);
 void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent>& events);
 
 nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played);

@@ -67,6 +67,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoWriterOptions& opti
   if (!options.IsValid(&why)) throw Error(path + ": " + why);
   Impl& m = *impl_;
   m.path = path;
+  av_log_set_level(AV_LOG_ERROR);  // encoder statistics are noise on a user's terminal
   int ret = avformat_alloc_output_context2(&m.format, nullptr, nullptr, path.c_str());
   if (ret < 0 || !m.format) throw Error(path + ": cannot choose a container: " + AvError(ret));
   const AVCodec* encoder = options.codec == VideoCodec::kH264 ? avcodec_find_encoder_by_name("libx264")

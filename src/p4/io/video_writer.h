@@ -16,7 +16,7 @@ struct VideoWriterOptions {
   int fps = 120;
   VideoCodec codec = VideoCodec::kH264;
   int crf = 18;               // H.264 quality (lower is better)
-  std::string preset = "veryfast";
+  std::string preset = "ultrafast";
   int threads = 1;            // encoder threads
 
   bool IsValid(std::string* error) const;

@@ -341,58 +341,49 @@ void CameraRenderer::WriteRect(const Rect& r, I420Image* out) const {
 }
 
 CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) {
-  Rect all{w_, h_, 0, 0};
   if (!scene_.players) return {};
+  Rect all{w_, h_, 0, 0};
   const Eigen::Matrix3d world_from_cam = camera_.cam_from_world.rotation.transpose();
   const Eigen::Vector3d origin = camera_.Center();
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
   for (int k = 0; k < 2; ++k) {
-    const std::vector<Ellipsoid> body = PlayerBody(content.players[k], k == 1, scene_.orange_shirt);
-    // Bounding box of the body's projection (corners of each ellipsoid's box).
-    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
-    bool behind = false;
-    for (const Ellipsoid& e : body) {
-      for (int c = 0; c < 8; ++c) {
+    // Each ellipsoid is z-buffered on its own projected box: far fewer ray tests than one box
+    // around the whole body.
+    for (const Ellipsoid& e : PlayerBody(content.players[k], k == 1, scene_.orange_shirt)) {
+      double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+      bool behind = false;
+      for (int c = 0; c < 8 && !behind; ++c) {
         const Eigen::Vector3d p = e.c + Eigen::Vector3d((c & 1) ? e.r.x() : -e.r.x(),
                                                         (c & 2) ? e.r.y() : -e.r.y(),
                                                         (c & 4) ? e.r.z() : -e.r.z());
         const auto px = camera_.Project(p);
         if (!px) {
           behind = true;
-          continue;
+          break;
         }
         x0 = std::min(x0, px->x()), y0 = std::min(y0, px->y());
         x1 = std::max(x1, px->x()), y1 = std::max(y1, px->y());
       }
-    }
-    if (behind || x1 < 0 || y1 < 0 || x0 >= w_ || y0 >= h_) continue;
-    const Rect r = ClipEven(x0 - 2, y0 - 2, x1 + 2, y1 + 2);
-    if (r.empty()) continue;
-    for (int v = r.y0; v < r.y1; ++v) {
-      for (int u = r.x0; u < r.x1; ++u) {
-        const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
-        const Eigen::Vector2d nrm = Normalized(u, v);
-        const Eigen::Vector3d d = world_from_cam * Eigen::Vector3d(nrm.x(), nrm.y(), 1.0);
-        double best = work_depth_[i];
-        const Ellipsoid* hit = nullptr;
-        for (const Ellipsoid& e : body) {
+      if (behind || x1 < 0 || y1 < 0 || x0 >= w_ || y0 >= h_) continue;
+      const Rect r = ClipEven(x0 - 2, y0 - 2, x1 + 2, y1 + 2);
+      if (r.empty()) continue;
+      for (int v = r.y0; v < r.y1; ++v) {
+        for (int u = r.x0; u < r.x1; ++u) {
+          const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
+          const Eigen::Vector2d nrm = Normalized(u, v);
+          const Eigen::Vector3d d = world_from_cam * Eigen::Vector3d(nrm.x(), nrm.y(), 1.0);
           double t;
-          if (HitEllipsoid(e, origin, d, &t) && t < best) {
-            best = t;
-            hit = &e;
-          }
+          if (!HitEllipsoid(e, origin, d, &t) || t >= work_depth_[i]) continue;
+          const Eigen::Vector3d p = origin + t * d;
+          const Eigen::Vector3d normal = (p - e.c).cwiseQuotient(e.r.cwiseProduct(e.r)).normalized();
+          ToYuv(Shade(e.color, normal, 0.5), &work_yuv_[i], &work_yuv_[n + i], &work_yuv_[2 * n + i]);
+          work_depth_[i] = static_cast<float>(t);
         }
-        if (!hit) continue;
-        const Eigen::Vector3d p = origin + best * d;
-        const Eigen::Vector3d normal =
-            (p - hit->c).cwiseQuotient(hit->r.cwiseProduct(hit->r)).normalized();
-        ToYuv(Shade(hit->color, normal, 0.5), &work_yuv_[i], &work_yuv_[n + i], &work_yuv_[2 * n + i]);
-        work_depth_[i] = static_cast<float>(best);
       }
+      all.x0 = std::min(all.x0, r.x0), all.y0 = std::min(all.y0, r.y0);
+      all.x1 = std::max(all.x1, r.x1), all.y1 = std::max(all.y1, r.y1);
+      dirty_.push_back(r);
     }
-    all.x0 = std::min(all.x0, r.x0), all.y0 = std::min(all.y0, r.y0);
-    all.x1 = std::max(all.x1, r.x1), all.y1 = std::max(all.y1, r.y1);
-    dirty_.push_back(r);
   }
   return all;
 }
@@ -440,8 +431,9 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
         const Eigen::Vector3d normal = (t * d - c) / radius;
         const Eigen::Vector3d view = -(t * d).normalized();
         const Eigen::Vector3d reflect = 2.0 * normal.dot(light) * normal - light;
-        Rgb col = Shade(albedo, normal, 0.45);
-        const float spec = 0.25f * static_cast<float>(std::pow(std::max(0.0, reflect.dot(view)), 30.0));
+        // Halls light a matte ball from many lamps: mostly ambient, a little sun, a soft highlight.
+        Rgb col = Shade(albedo, normal, 0.8);
+        const float spec = 0.08f * static_cast<float>(std::pow(std::max(0.0, reflect.dot(view)), 30.0));
         col = {col.r + spec, col.g + spec, col.b + spec};
         float yy, uu, vv;
         ToYuv(col, &yy, &uu, &vv);

@@ -1,0 +1,13 @@
+// Subcommands of p4track. Each registers its options on the CLI11 app and returns the function
+// that runs it (exit code). Errors at the edges surface as p4::Error and exit code 2.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace p4::app {
+
+std::function<int()> AddSimulateCommand(CLI::App& app);
+
+}  // namespace p4::app
