@@ -2,9 +2,8 @@
 // that runs it (exit code). Errors at the edges surface as p4::Error and exit code 2.
 #pragma once
 
-#include <functional>
-
 #include <CLI/CLI.hpp>
+#include <functional>
 
 namespace p4::app {
 

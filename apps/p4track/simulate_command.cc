@@ -1,12 +1,12 @@
 // p4track simulate: renders simulated (or real, --trajectory) table-tennis play from N cameras,
 // with exact ground truth (DESIGN.md "Files").
+#include <spdlog/spdlog.h>
+
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <memory>
 #include <thread>
-
-#include <spdlog/spdlog.h>
 
 #include "commands.h"
 #include "p4/calib/aruco_markers.h"
@@ -181,9 +181,10 @@ int Run(const SimulateArgs& a) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  spdlog::info("wrote {}: {} camera(s) x {} frames ({}x{} at {} fps, {:.2f} s of play), {} events "
-               "in {:.1f} s",
-               a.out, rig.size(), frames, width, height, a.fps, duration, events.size(), seconds);
+  spdlog::info(
+      "wrote {}: {} camera(s) x {} frames ({}x{} at {} fps, {:.2f} s of play), {} events "
+      "in {:.1f} s",
+      a.out, rig.size(), frames, width, height, a.fps, duration, events.size(), seconds);
   return 0;
 }
 
@@ -195,27 +196,44 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
       "simulate", "Render simulated table-tennis play from N cameras with exact ground truth");
   cmd->add_option("--out", args->out, "Output folder")->required();
   cmd->add_option("--cameras", args->cameras, "Number of cameras (club positions)")
-      ->check(CLI::Range(1, 8))->capture_default_str();
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--fps", args->fps, "Frames per second")->capture_default_str();
-  cmd->add_option("--points", args->points, "Points to play")->check(CLI::Range(1, 1000))->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Random seed (same seed, same truth)")->capture_default_str();
+  cmd->add_option("--points", args->points, "Points to play")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed (same seed, same truth)")
+      ->capture_default_str();
   cmd->add_option("--codec", args->codec, "h264 (.mp4) or ffv1 (lossless .mkv)")
-      ->check(CLI::IsMember({"h264", "ffv1"}))->capture_default_str();
-  cmd->add_option("--ball", args->ball, "Ball colour")->check(CLI::IsMember({"orange", "white"}))->capture_default_str();
-  cmd->add_flag("--markers", args->markers, "Lay ArUco markers on the table corners (markers.yaml)");
-  cmd->add_option("--marker-size", args->marker_size, "Marker side, metres")->check(CLI::Range(0.03, 0.3))->capture_default_str();
+      ->check(CLI::IsMember({"h264", "ffv1"}))
+      ->capture_default_str();
+  cmd->add_option("--ball", args->ball, "Ball colour")
+      ->check(CLI::IsMember({"orange", "white"}))
+      ->capture_default_str();
+  cmd->add_flag("--markers", args->markers,
+                "Lay ArUco markers on the table corners (markers.yaml)");
+  cmd->add_option("--marker-size", args->marker_size, "Marker side, metres")
+      ->check(CLI::Range(0.03, 0.3))
+      ->capture_default_str();
   cmd->add_option("--dictionary", args->dictionary, "ArUco dictionary")->capture_default_str();
   cmd->add_flag("--orange-shirt", args->orange_shirt, "Player B wears an orange-ish shirt");
   cmd->add_flag("--no-players", args->no_players, "Leave the players out");
   cmd->add_flag("--distortion", args->distortion, "Give the cameras webcam-like lens distortion");
-  cmd->add_option("--noise", args->noise, "Sensor noise, 8-bit levels (sigma)")->check(CLI::Range(0.0, 20.0))->capture_default_str();
+  cmd->add_option("--noise", args->noise, "Sensor noise, 8-bit levels (sigma)")
+      ->check(CLI::Range(0.0, 20.0))
+      ->capture_default_str();
   cmd->add_option("--exposure-ms", args->exposure_ms, "Exposure (default: half a frame)");
   cmd->add_option("--best-of", args->best_of, "Games in the match (odd)")->capture_default_str();
-  cmd->add_option("--first-server", args->first_server, "A or B")->check(CLI::IsMember({"A", "B"}))->capture_default_str();
-  cmd->add_option("--gap", args->gap, "Seconds without a ball between points")->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  cmd->add_option("--first-server", args->first_server, "A or B")
+      ->check(CLI::IsMember({"A", "B"}))
+      ->capture_default_str();
+  cmd->add_option("--gap", args->gap, "Seconds without a ball between points")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
   cmd->add_option("--max-duration", args->max_duration, "Stop the scene after this many seconds");
-  cmd->add_option("--trajectory", args->trajectory, "Replay a real flight (tt3d CSV) instead of play")
+  cmd->add_option("--trajectory", args->trajectory,
+                  "Replay a real flight (tt3d CSV) instead of play")
       ->check(CLI::ExistingFile);
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
   return [args]() { return Run(*args); };

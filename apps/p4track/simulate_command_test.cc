@@ -1,14 +1,14 @@
 // End-to-end: runs `p4track simulate` and checks what a user would: the videos play with the
 // right size, frame count and rate; the truth's projected ball lands on the rendered ball; the
 // files are deterministic for a seed.
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
@@ -148,7 +148,8 @@ TEST_F(SimulateCommand, ProjectedTruthLandsOnTheRenderedBall) {
       const auto before = camera.Project(truth[k - 1].p), after = camera.Project(truth[k + 1].p);
       if (!px || !before || !after || !camera.InImage(*px, 16.0)) continue;
       if ((*after - *before).norm() > 8.0) continue;  // blur over the exposure < 2 px
-      const int cx = static_cast<int>(std::lround(px->x())), cy = static_cast<int>(std::lround(px->y()));
+      const int cx = static_cast<int>(std::lround(px->x())),
+                cy = static_cast<int>(std::lround(px->y()));
       const int half = 8;
       const auto& a = frames[k - 30];
       const auto& b = frames[k + 30];
@@ -184,7 +185,7 @@ TEST_F(SimulateCommand, ProjectedTruthLandsOnTheRenderedBall) {
 TEST_F(SimulateCommand, SameSeedSameTruthBytes) {
   const fs::path again = *dir_ / "again";
   ASSERT_EQ(RunP4track("simulate --out " + again.string() +
-                " --cameras 1 --size 320x180 --fps 60 --points 1 --seed 4 --max-duration 3"),
+                       " --cameras 1 --size 320x180 --fps 60 --points 1 --seed 4 --max-duration 3"),
             0);
   for (const char* name : {"truth.csv", "truth_events.jsonl", "truth_score.json"}) {
     EXPECT_EQ(Slurp((*dir_ / name).string()), Slurp((again / name).string())) << name;

@@ -8,9 +8,9 @@ namespace p4 {
 
 int ArucoDictionaryId(const std::string& name) {
   static const std::pair<const char*, int> kNames[] = {
-      {"DICT_4X4_50", cv::aruco::DICT_4X4_50},   {"DICT_4X4_100", cv::aruco::DICT_4X4_100},
-      {"DICT_5X5_50", cv::aruco::DICT_5X5_50},   {"DICT_5X5_100", cv::aruco::DICT_5X5_100},
-      {"DICT_6X6_50", cv::aruco::DICT_6X6_50},   {"DICT_6X6_250", cv::aruco::DICT_6X6_250},
+      {"DICT_4X4_50", cv::aruco::DICT_4X4_50}, {"DICT_4X4_100", cv::aruco::DICT_4X4_100},
+      {"DICT_5X5_50", cv::aruco::DICT_5X5_50}, {"DICT_5X5_100", cv::aruco::DICT_5X5_100},
+      {"DICT_6X6_50", cv::aruco::DICT_6X6_50}, {"DICT_6X6_250", cv::aruco::DICT_6X6_250},
   };
   for (const auto& [n, id] : kNames) {
     if (name == n) return id;

@@ -1,6 +1,7 @@
 #include "p4/calib/aruco_markers.h"
 
 #include <gtest/gtest.h>
+
 #include <opencv2/aruco.hpp>
 
 #include "p4/core/error.h"

@@ -5,9 +5,7 @@
 namespace p4 {
 
 I420Image::I420Image(int width, int height)
-    : width_(width),
-      height_(height),
-      data_(static_cast<std::size_t>(width) * height * 3 / 2, 0) {
+    : width_(width), height_(height), data_(static_cast<std::size_t>(width) * height * 3 / 2, 0) {
   assert(width % 2 == 0 && height % 2 == 0);
 }
 

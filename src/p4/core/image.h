@@ -48,7 +48,9 @@ class I420Image {
   uint8_t* v() { return u() + static_cast<std::size_t>(chroma_width()) * chroma_height(); }
   const uint8_t* y() const { return data_.data(); }
   const uint8_t* u() const { return y() + static_cast<std::size_t>(width_) * height_; }
-  const uint8_t* v() const { return u() + static_cast<std::size_t>(chroma_width()) * chroma_height(); }
+  const uint8_t* v() const {
+    return u() + static_cast<std::size_t>(chroma_width()) * chroma_height();
+  }
 
   std::vector<uint8_t>& bytes() { return data_; }
   const std::vector<uint8_t>& bytes() const { return data_; }

@@ -27,7 +27,7 @@ TEST(MatchScore, DeuceChangesServiceEveryPointAndNeedsTwoClear) {
   EXPECT_EQ(score.Server(), 'A');
   EXPECT_FALSE(score.AwardPoint('B').game_over);  // 11-11
   EXPECT_EQ(score.Server(), 'B');
-  score.AwardPoint('B');                     // 11-12
+  score.AwardPoint('B');                           // 11-12
   const PointOutcome end = score.AwardPoint('B');  // 11-13
   EXPECT_TRUE(end.game_over);
   EXPECT_EQ(end.score, (std::array<int, 2>{11, 13}));

@@ -87,8 +87,8 @@ bool ValidateCamera(const Camera& camera, std::string* error) {
   std::ostringstream why;
   const auto finite = [](double v) { return std::isfinite(v); };
   if (camera.width <= 0 || camera.height <= 0) {
-    why << "image_width/image_height must be positive (got " << camera.width << "x"
-        << camera.height << ")";
+    why << "image_width/image_height must be positive (got " << camera.width << "x" << camera.height
+        << ")";
   } else if (!finite(camera.fx) || !finite(camera.fy) || camera.fx <= 0.0 || camera.fy <= 0.0) {
     why << "camera_matrix: focal lengths must be positive and finite (fx=" << camera.fx
         << ", fy=" << camera.fy << ")";

@@ -6,11 +6,10 @@
 // "ideal pixels" are K applied to normalized coordinates (no distortion).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "p4/geometry/pose.h"
 

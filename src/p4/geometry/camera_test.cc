@@ -1,8 +1,8 @@
 #include "p4/geometry/camera.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "p4/geometry/test_cameras.h"
 
@@ -33,8 +33,8 @@ TEST(Camera, PointBehindTheCameraDoesNotProject) {
 }
 
 TEST(Camera, DistortionRoundTrip) {
-  Camera camera = MakeCamera("c", {0.0, -3.0, 1.0}, {0.0, 0.0, 1.0},
-                             {-0.28, 0.09, 0.0012, -0.0008, -0.012});
+  Camera camera =
+      MakeCamera("c", {0.0, -3.0, 1.0}, {0.0, 0.0, 1.0}, {-0.28, 0.09, 0.0012, -0.0008, -0.012});
   for (double x = -0.6; x <= 0.6; x += 0.1) {
     for (double y = -0.35; y <= 0.35; y += 0.07) {
       const Eigen::Vector2d n(x, y);

@@ -6,9 +6,8 @@
 // are exact for cameras with lens distortion too.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "p4/geometry/camera.h"
 

@@ -9,9 +9,9 @@ namespace {
 
 TEST(Epipolar, TrueCorrespondenceLiesOnTheLine) {
   const auto cameras = testing::ClubCameras();  // camera 1 has lens distortion
-  for (const Eigen::Vector3d& point : {Eigen::Vector3d(0.5, 0.2, 0.3),
-                                       Eigen::Vector3d(-1.1, -0.6, 0.02),
-                                       Eigen::Vector3d(1.5, 0.7, 0.8)}) {
+  for (const Eigen::Vector3d& point :
+       {Eigen::Vector3d(0.5, 0.2, 0.3), Eigen::Vector3d(-1.1, -0.6, 0.02),
+        Eigen::Vector3d(1.5, 0.7, 0.8)}) {
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
         if (i == j) continue;

@@ -7,9 +7,8 @@
 // the ellipse-centre bias the paper neglects (its "p = p_e" approximation).
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "p4/geometry/camera.h"
 
@@ -17,8 +16,8 @@ namespace p4 {
 
 struct SphereDepthResult {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world, metres
-  double distance = 0.0;      // from the optical centre to the ball centre, metres
-  double half_angle = 0.0;    // alpha, radians
+  double distance = 0.0;    // from the optical centre to the ball centre, metres
+  double half_angle = 0.0;  // alpha, radians
 };
 
 // centroid_px: centroid of the ball's image (distorted pixels); diameter_px: its diameter in

@@ -1,8 +1,8 @@
 #include "p4/geometry/sphere_depth.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "p4/core/table.h"
 #include "p4/geometry/test_cameras.h"

@@ -25,10 +25,10 @@ inline Camera MakeCamera(const std::string& name, const Eigen::Vector3d& eye,
 }
 
 inline std::vector<Camera> ClubCameras() {
-  return {MakeCamera("side", {0.2, -3.5, 1.5}),
-          MakeCamera("end_a", {-4.0, -0.8, 2.0}, {0.3, 0.0, 0.0}, {-0.12, 0.05, 0.001, -0.0005, 0.0}),
-          MakeCamera("end_b", {4.0, 0.8, 2.0}),
-          MakeCamera("other_side", {-0.5, 3.4, 1.6})};
+  return {
+      MakeCamera("side", {0.2, -3.5, 1.5}),
+      MakeCamera("end_a", {-4.0, -0.8, 2.0}, {0.3, 0.0, 0.0}, {-0.12, 0.05, 0.001, -0.0005, 0.0}),
+      MakeCamera("end_b", {4.0, 0.8, 2.0}), MakeCamera("other_side", {-0.5, 3.4, 1.6})};
 }
 
 }  // namespace p4::testing

@@ -1,9 +1,8 @@
 #include "p4/geometry/triangulation.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Eigenvalues>
 
 namespace p4 {
 
@@ -26,7 +25,8 @@ std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (const Ray& ray : rays) {
-    const Eigen::Matrix3d p = Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
+    const Eigen::Matrix3d p =
+        Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
     a += p;
     b += p * ray.origin;
   }
@@ -35,8 +35,8 @@ std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
   TriangulationResult result;
   result.conditioning = lambda(2) > 0.0 ? lambda(0) / lambda(2) : 0.0;
   if (!(result.conditioning >= options.min_conditioning) || lambda(0) <= 0.0) return std::nullopt;
-  result.point = eigen.eigenvectors() *
-                 (eigen.eigenvectors().transpose() * b).cwiseQuotient(lambda);
+  result.point =
+      eigen.eigenvectors() * (eigen.eigenvectors().transpose() * b).cwiseQuotient(lambda);
   double sum_sq = 0.0;
   for (const Ray& ray : rays) {
     const Eigen::Vector3d to_point = result.point - ray.origin;

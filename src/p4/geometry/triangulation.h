@@ -4,12 +4,11 @@
 // Frames: rays and points in the world frame, metres; observations in pixels of each camera.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "p4/geometry/camera.h"
 
@@ -43,13 +42,13 @@ std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
 
 // One camera's view of the ball.
 struct Observation {
-  int camera = 0;           // index into the camera list
-  Eigen::Vector2d pixel;    // distorted pixel of the ball centre
+  int camera = 0;         // index into the camera list
+  Eigen::Vector2d pixel;  // distorted pixel of the ball centre
 };
 
 struct PointEstimate {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // world, metres
-  double mean_reprojection_px = 0.0;  // mean over the observations
+  double mean_reprojection_px = 0.0;                // mean over the observations
   double conditioning = 0.0;
   int num_views = 0;
 };

@@ -1,8 +1,8 @@
 #include "p4/geometry/triangulation.h"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "p4/geometry/test_cameras.h"
 

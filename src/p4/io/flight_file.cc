@@ -14,7 +14,8 @@ RealFlight ReadTt3dFlight(const std::string& path, double start_s) {
   if (!in) throw Error(path + ": cannot open");
   std::string line;
   std::getline(in, line);
-  if (line.rfind("Timestamp,X,Y,Z", 0) != 0) throw Error(path + ": line 1: expected 'Timestamp,X,Y,Z'");
+  if (line.rfind("Timestamp,X,Y,Z", 0) != 0)
+    throw Error(path + ": line 1: expected 'Timestamp,X,Y,Z'");
   std::vector<double> t;
   std::vector<Eigen::Vector3d> p;
   int number = 1;
@@ -44,8 +45,8 @@ RealFlight ReadTt3dFlight(const std::string& path, double start_s) {
     s.position = p[i];
     s.velocity = (p[b] - p[a]) / (t[b] - t[a]);
     flight.trajectory.Append(t[i] - t0 + start_s, s);
-    if (i > 0 && i + 1 < n && p[i].z() < 0.04 && p[i].z() <= p[i - 1].z() && p[i].z() < p[i + 1].z() &&
-        table::OnSurface(p[i].x(), p[i].y())) {
+    if (i > 0 && i + 1 < n && p[i].z() < 0.04 && p[i].z() <= p[i - 1].z() &&
+        p[i].z() < p[i + 1].z() && table::OnSurface(p[i].x(), p[i].y())) {
       sim::TruthEvent e;
       e.t = t[i] - t0 + start_s;
       e.type = "bounce";

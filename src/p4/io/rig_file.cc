@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "p4/core/error.h"
 
@@ -74,9 +73,8 @@ bool ReadNumbers(const cv::FileNode& node, std::vector<double>* values, int* row
   return false;
 }
 
-std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& key,
-                               int want_rows, int want_cols, bool either_orientation,
-                               const std::string& where) {
+std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& key, int want_rows,
+                               int want_cols, bool either_orientation, const std::string& where) {
   const cv::FileNode node = camera[key];
   if (node.empty()) throw Error(where + ": missing '" + key + "'");
   std::vector<double> values;
@@ -104,7 +102,8 @@ int ReadPositiveInt(const cv::FileNode& camera, const std::string& key, const st
   if (node.empty()) throw Error(where + ": missing '" + key + "'");
   if (!node.isInt()) throw Error(where + ": " + key + ": expected an integer");
   const int value = static_cast<int>(node);
-  if (value <= 0) throw Error(where + ": " + key + ": must be positive (got " + std::to_string(value) + ")");
+  if (value <= 0)
+    throw Error(where + ": " + key + ": must be positive (got " + std::to_string(value) + ")");
   return value;
 }
 
@@ -122,7 +121,8 @@ Rig ReadRig(const std::string& path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
   cv::FileStorage fs;
   try {
-    if (!fs.open(path, cv::FileStorage::READ)) throw Error(path + ": cannot open or parse the file");
+    if (!fs.open(path, cv::FileStorage::READ))
+      throw Error(path + ": cannot open or parse the file");
   } catch (const cv::Exception& e) {
     throw Error(path + ": cannot parse the file (" + e.msg + ")");
   }
@@ -153,7 +153,8 @@ Rig ReadRig(const std::string& path) {
     }
     const auto r = ReadMatrix(node, "rotation", 3, 3, false, where);
     const auto t = ReadMatrix(node, "translation", 3, 1, true, where);
-    camera.cam_from_world.rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
+    camera.cam_from_world.rotation =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
     camera.cam_from_world.translation = Eigen::Vector3d(t[0], t[1], t[2]);
     std::string why;
     if (!ValidateCamera(camera, &why)) throw Error(where + ": " + why);
@@ -175,7 +176,8 @@ void WriteRig(const Rig& rig, const std::string& path) {
   try {
     cv::FileStorage fs(temporary.string(), cv::FileStorage::WRITE);
     if (!fs.isOpened()) throw Error(path + ": cannot write the file");
-    fs << "cameras" << "[";
+    fs << "cameras"
+       << "[";
     for (const Camera& camera : rig.cameras) {
       fs << "{";
       fs << "name" << camera.name;

@@ -1,9 +1,9 @@
 #include "p4/io/rig_file.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "p4/core/error.h"
 #include "p4/geometry/look_at.h"
@@ -141,9 +141,10 @@ TEST_F(RigFileTest, EveryKindOfBadFileIsNamed) {
   ExpectError(Write("nan.yaml", YamlWith(Replace(kGoodCamera, "data: [ 0., 0.5, 3. ]",
                                                  "data: [ 0., .nan, 3. ]"))),
               {"nan.yaml", "translation", "not finite"});
-  ExpectError(Write("rot.yaml", YamlWith(Replace(kGoodCamera, "[ 1., 0., 0., 0., 0., -1., 0., 1., 0. ]",
-                                                 "[ 1., 0., 0., 0., 1., 0., 0., 1., 0. ]"))),
-              {"rot.yaml", "cam0", "rotation"});
+  ExpectError(
+      Write("rot.yaml", YamlWith(Replace(kGoodCamera, "[ 1., 0., 0., 0., 0., -1., 0., 1., 0. ]",
+                                         "[ 1., 0., 0., 0., 1., 0., 0., 1., 0. ]"))),
+      {"rot.yaml", "cam0", "rotation"});
   ExpectError(Write("focal.yaml", YamlWith(Replace(kGoodCamera, "[ 1000., 0., 640., 0., 1000.",
                                                    "[ 0., 0., 640., 0., 1000."))),
               {"focal.yaml", "cam0", "focal"});

@@ -1,8 +1,8 @@
 #include "p4/io/truth_files.h"
 
-#include <fstream>
-
 #include <fmt/format.h>
+
+#include <fstream>
 #include <opencv2/core.hpp>
 
 #include "p4/core/error.h"
@@ -32,8 +32,8 @@ void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, i
     const auto& p = s->position;
     const auto& v = s->velocity;
     const auto& w = s->spin;
-    out << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.5f},{:.5f},{:.5f},{:.3f},{:.3f},{:.3f},1\n", t,
-                       p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
+    out << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f},{:.5f},{:.5f},{:.5f},{:.3f},{:.3f},{:.3f},1\n",
+                       t, p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z());
   }
   if (!out) throw Error(path + ": write failed");
 }
@@ -43,14 +43,14 @@ std::string EventToJsonLine(const sim::TruthEvent& e) {
   if (e.player) line += fmt::format(",\"player\":\"{}\"", e.player);
   if (e.side) line += fmt::format(",\"side\":\"{}\"", e.side);
   if (e.position) {
-    line += fmt::format(",\"x\":{:.6f},\"y\":{:.6f},\"z\":{:.6f}", e.position->x(),
-                        e.position->y(), e.position->z());
+    line += fmt::format(",\"x\":{:.6f},\"y\":{:.6f},\"z\":{:.6f}", e.position->x(), e.position->y(),
+                        e.position->z());
   }
   if (e.winner) {
     line += fmt::format(",\"winner\":\"{}\"", e.winner);
     if (!e.reason.empty()) line += fmt::format(",\"reason\":\"{}\"", e.reason);
-    line += fmt::format(",\"score\":[{},{}],\"games\":[{},{}]", e.score[0], e.score[1],
-                        e.games[0], e.games[1]);
+    line += fmt::format(",\"score\":[{},{}],\"games\":[{},{}]", e.score[0], e.score[1], e.games[0],
+                        e.games[1]);
   }
   return line + "}";
 }
@@ -70,7 +70,8 @@ nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played) {
   j["games"] = score.games();
   j["finished_games"] = score.finished_games();
   j["match_over"] = score.match_over();
-  j["winner"] = score.match_over() ? nlohmann::json(std::string(1, score.match_winner())) : nlohmann::json();
+  j["winner"] =
+      score.match_over() ? nlohmann::json(std::string(1, score.match_winner())) : nlohmann::json();
   j["next_server"] = std::string(1, score.Server());
   return j;
 }
@@ -86,13 +87,15 @@ void WriteMarkerLayout(const std::string& path, const std::vector<sim::MarkerQua
   cv::FileStorage fs(path, cv::FileStorage::WRITE);
   if (!fs.isOpened()) throw Error(path + ": cannot create the file");
   fs << "dictionary" << dictionary;
-  fs << "markers" << "[";
+  fs << "markers"
+     << "[";
   for (const auto& m : markers) {
     cv::Mat corners(4, 3, CV_64F);
     for (int i = 0; i < 4; ++i) {
       for (int k = 0; k < 3; ++k) corners.at<double>(i, k) = m.corners[i][k];
     }
-    fs << "{" << "id" << m.id << "corners" << corners << "}";
+    fs << "{"
+       << "id" << m.id << "corners" << corners << "}";
   }
   fs << "]";
 }

@@ -2,10 +2,9 @@
 // truth_score.json, and markers.yaml for calibration scenes.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "p4/game/match_score.h"
 #include "p4/sim/match.h"

@@ -68,9 +68,11 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
     int ret = avcodec_receive_frame(m.codec, m.frame);
     if (ret == 0) {
       const AVRational tb = m.format->streams[m.stream]->time_base;
-      const int64_t ts = m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
+      const int64_t ts =
+          m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
       const int64_t start = m.format->streams[m.stream]->start_time;
-      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb, AVRational{1, 1'000'000'000});
+      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb,
+                          AVRational{1, 1'000'000'000});
       const int w = m.frame->width, h = m.frame->height;
       if (out->width() != w || out->height() != h) *out = I420Image(w, h);
       uint8_t* dst[3] = {out->y(), out->u(), out->v()};
@@ -79,7 +81,8 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
         for (int p = 0; p < 3; ++p) {
           const int rows = p == 0 ? h : h / 2;
           for (int r = 0; r < rows; ++r) {
-            std::memcpy(dst[p] + r * dst_stride[p], m.frame->data[p] + r * m.frame->linesize[p], dst_stride[p]);
+            std::memcpy(dst[p] + r * dst_stride[p], m.frame->data[p] + r * m.frame->linesize[p],
+                        dst_stride[p]);
           }
         }
       } else {
@@ -102,7 +105,8 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
     if (m.packet->stream_index == m.stream) {
       ret = avcodec_send_packet(m.codec, m.packet);
       av_packet_unref(m.packet);
-      if (ret < 0 && ret != AVERROR(EAGAIN)) throw Error(m.source + ": decoding failed: " + AvError(ret));
+      if (ret < 0 && ret != AVERROR(EAGAIN))
+        throw Error(m.source + ": decoding failed: " + AvError(ret));
     } else {
       av_packet_unref(m.packet);
     }

@@ -1,6 +1,6 @@
-#include <filesystem>
-
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include "p4/core/error.h"
 #include "p4/io/video_reader.h"
@@ -14,7 +14,8 @@ namespace fs = std::filesystem;
 I420Image Pattern(int w, int h, int k) {
   I420Image image(w, h);
   for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) image.y()[y * w + x] = static_cast<uint8_t>((x * 3 + y + 7 * k) % 220 + 16);
+    for (int x = 0; x < w; ++x)
+      image.y()[y * w + x] = static_cast<uint8_t>((x * 3 + y + 7 * k) % 220 + 16);
   }
   for (int i = 0; i < w * h / 4; ++i) {
     image.u()[i] = static_cast<uint8_t>(100 + (i + k) % 50);

@@ -25,7 +25,9 @@ bool VideoWriterOptions::IsValid(std::string* error) const {
   return true;
 }
 
-const char* VideoExtension(VideoCodec codec) { return codec == VideoCodec::kH264 ? ".mp4" : ".mkv"; }
+const char* VideoExtension(VideoCodec codec) {
+  return codec == VideoCodec::kH264 ? ".mp4" : ".mkv";
+}
 
 struct VideoWriter::Impl {
   std::string path;
@@ -70,8 +72,9 @@ VideoWriter::VideoWriter(const std::string& path, const VideoWriterOptions& opti
   av_log_set_level(AV_LOG_ERROR);  // encoder statistics are noise on a user's terminal
   int ret = avformat_alloc_output_context2(&m.format, nullptr, nullptr, path.c_str());
   if (ret < 0 || !m.format) throw Error(path + ": cannot choose a container: " + AvError(ret));
-  const AVCodec* encoder = options.codec == VideoCodec::kH264 ? avcodec_find_encoder_by_name("libx264")
-                                                             : avcodec_find_encoder(AV_CODEC_ID_FFV1);
+  const AVCodec* encoder = options.codec == VideoCodec::kH264
+                               ? avcodec_find_encoder_by_name("libx264")
+                               : avcodec_find_encoder(AV_CODEC_ID_FFV1);
   if (!encoder) throw Error(path + ": the FFmpeg build has no encoder for this codec");
   m.stream = avformat_new_stream(m.format, nullptr);
   m.codec = avcodec_alloc_context3(encoder);
@@ -132,7 +135,8 @@ void VideoWriter::Write(const I420Image& image) {
   const int heights[3] = {image.height(), image.chroma_height(), image.chroma_height()};
   for (int p = 0; p < 3; ++p) {
     for (int row = 0; row < heights[p]; ++row) {
-      std::memcpy(m.frame->data[p] + row * m.frame->linesize[p], planes[p] + row * widths[p], widths[p]);
+      std::memcpy(m.frame->data[p] + row * m.frame->linesize[p], planes[p] + row * widths[p],
+                  widths[p]);
     }
   }
   m.frame->pts = m.next_pts++;

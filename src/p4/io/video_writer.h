@@ -15,9 +15,9 @@ struct VideoWriterOptions {
   int width = 0, height = 0;  // even
   int fps = 120;
   VideoCodec codec = VideoCodec::kH264;
-  int crf = 18;               // H.264 quality (lower is better)
+  int crf = 18;  // H.264 quality (lower is better)
   std::string preset = "ultrafast";
-  int threads = 1;            // encoder threads
+  int threads = 1;  // encoder threads
 
   bool IsValid(std::string* error) const;
 };

@@ -54,8 +54,8 @@ double TableRestitution(double normal_speed, const BallParams& p) {
                     0.97);
 }
 
-BallState Impact(const BallState& s, const Eigen::Vector3d& n, double restitution,
-                 double friction, const BallParams& p) {
+BallState Impact(const BallState& s, const Eigen::Vector3d& n, double restitution, double friction,
+                 const BallParams& p) {
   BallState out = s;
   const double vn = s.velocity.dot(n);
   if (vn >= 0.0) return out;  // separating already

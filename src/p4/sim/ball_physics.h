@@ -7,11 +7,10 @@
 // along the spin axis (right-hand rule). Constants: Tebbe et al. / TT3D, ITTF.
 #pragma once
 
-#include <optional>
-#include <string>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
+#include <string>
 
 namespace p4::sim {
 
@@ -26,7 +25,7 @@ struct BallParams {
   // then rebounds to ~23 cm as the ITTF requires (2.3: 23-25 cm from 30.5 cm).
   double table_restitution = 0.88;
   double restitution_slope = 0.02;  // per m/s
-  double table_friction = 0.25;  // Coulomb coefficient ball-table
+  double table_friction = 0.25;     // Coulomb coefficient ball-table
   double floor_restitution = 0.7;
   double floor_friction = 0.4;
   double net_restitution = 0.15;  // the net is soft: the ball drops off it
@@ -62,8 +61,8 @@ struct ContactEvent {
   Contact kind = Contact::kNone;
   double time = 0.0;                                // s, exact to ~1 us
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // ball centre at contact
-  BallState before;  // at `time`, just before the impact
-  BallState after;   // at `time`, just after it
+  BallState before;                                 // at `time`, just before the impact
+  BallState after;                                  // at `time`, just after it
 };
 
 // Advances the ball by dt through the world (table top, net with cord and posts, floor),

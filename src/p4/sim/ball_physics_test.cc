@@ -1,8 +1,8 @@
 #include "p4/sim/ball_physics.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "p4/core/table.h"
 
@@ -72,8 +72,8 @@ TEST(BallPhysics, ABounceKeepsEnergyBelowOne) {
       s.position = {0.0, 0.0, p.radius};
       s.velocity = {vx, 1.0, -4.0};
       s.spin = {10.0, 2.0 * M_PI * spin_rps, 30.0};
-      const BallState out = Impact(s, Eigen::Vector3d::UnitZ(), p.table_restitution,
-                                   p.table_friction, p);
+      const BallState out =
+          Impact(s, Eigen::Vector3d::UnitZ(), p.table_restitution, p.table_friction, p);
       EXPECT_LT(Energy(out, p), Energy(s, p)) << vx << " " << spin_rps;
       EXPECT_GT(out.velocity.z(), 0.0);
     }

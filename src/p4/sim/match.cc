@@ -61,7 +61,8 @@ class Simulator {
   explicit Simulator(const MatchOptions& options)
       : options_(options),
         rng_(options.seed),
-        result_{Trajectory{}, {}, game::MatchScore(options.best_of, options.first_server), 0, 0.0} {}
+        result_{Trajectory{}, {}, game::MatchScore(options.best_of, options.first_server), 0, 0.0} {
+  }
 
   MatchResult Play() {
     double t = options_.start_s;
@@ -76,7 +77,9 @@ class Simulator {
   }
 
  private:
-  double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double Uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   bool Chance(double p) { return Uniform(0.0, 1.0) < p; }
 
   // Simulates from `s` at t0. With a hit rule: until that player strikes after the ball bounced
@@ -187,7 +190,8 @@ class Simulator {
       Run run = Simulate(start, at_time_, fault ? nullptr : &hit, Other(server), true);
       const auto& ev = run.events;
       if (fault) {
-        if (ev.size() >= 2 && ev[0].type == "bounce" && ev[0].side == server && ev[1].type == "out") {
+        if (ev.size() >= 2 && ev[0].type == "bounce" && ev[0].side == server &&
+            ev[1].type == "out") {
           return run;
         }
       } else if (run.hit_reached && ev.size() == 2 && ev[0].type == "bounce" &&
@@ -280,9 +284,7 @@ class Simulator {
     return Ending::kDoubleBounce;
   }
 
-  HitRule DrawHit(char player) {
-    return {player, Uniform(0.05, 0.6), Uniform(0.05, 0.3)};
-  }
+  HitRule DrawHit(char player) { return {player, Uniform(0.05, 0.6), Uniform(0.05, 0.3)}; }
 
   // Plays one point from its toss at t; returns the time the ball leaves the scene.
   double PlayPoint(double t) {

@@ -35,12 +35,12 @@ struct TruthEvent {
 };
 
 struct MatchOptions {
-  int points = 6;            // points to play (fewer if the match ends first)
-  int best_of = 5;           // games
+  int points = 6;   // points to play (fewer if the match ends first)
+  int best_of = 5;  // games
   char first_server = 'A';
-  double start_s = 0.3;      // time of the first toss
-  double gap_s = 1.0;        // ball out of the scene between points
-  double physics_dt = 0.0005;  // integration step, s (<= 1 ms)
+  double start_s = 0.3;                      // time of the first toss
+  double gap_s = 1.0;                        // ball out of the scene between points
+  double physics_dt = 0.0005;                // integration step, s (<= 1 ms)
   double min_speed = 5.0, max_speed = 25.0;  // m/s of rally shots
   double max_spin_rps = 150.0;
   double continue_probability = 0.6;  // chance a rally goes on after each good return

@@ -1,8 +1,8 @@
 #include "p4/sim/match.h"
 
-#include <map>
-
 #include <gtest/gtest.h>
+
+#include <map>
 
 #include "p4/core/table.h"
 #include "p4/sim/shot_solver.h"
@@ -91,7 +91,8 @@ void CheckEventsFollowTheRules(const MatchResult& result) {
     (void)out;
     (void)floor;
     std::string trace;
-    for (const TruthEvent* r : rally) trace += " " + r->type + (r->side ? std::string(1, r->side) : "");
+    for (const TruthEvent* r : rally)
+      trace += " " + r->type + (r->side ? std::string(1, r->side) : "");
     ASSERT_NE(expected_winner, 0) << "no decision in the rally before t=" << e.t << ":" << trace;
     EXPECT_EQ(e.winner, expected_winner) << "point at t=" << e.t << " (" << e.reason << ")";
     ++score[e.winner == 'A' ? 0 : 1];

@@ -74,22 +74,30 @@ std::vector<Box> StaticBoxes() {
   using table::kHalfLength;
   using table::kHalfWidth;
   std::vector<Box> boxes;
-  boxes.push_back({{-kHalfLength, -kHalfWidth, -0.025}, {kHalfLength, kHalfWidth, 0.0},
-                   {0.05f, 0.17f, 0.36f}, 1});
+  boxes.push_back({{-kHalfLength, -kHalfWidth, -0.025},
+                   {kHalfLength, kHalfWidth, 0.0},
+                   {0.05f, 0.17f, 0.36f},
+                   1});
   for (double sx : {-1.0, 1.0}) {
     for (double sy : {-1.0, 1.0}) {
       const Eigen::Vector3d c(sx * 1.05, sy * 0.6, 0.0);
       boxes.push_back({c + Eigen::Vector3d(-0.03, -0.03, table::kFloorZ),
-                       c + Eigen::Vector3d(0.03, 0.03, -0.025), {0.12f, 0.12f, 0.13f}, 0});
+                       c + Eigen::Vector3d(0.03, 0.03, -0.025),
+                       {0.12f, 0.12f, 0.13f},
+                       0});
     }
   }
   for (double sy : {-1.0, 1.0}) {  // net posts
     const double y0 = sy * table::kNetHalfLength, y1 = sy * (table::kNetHalfLength + 0.02);
-    boxes.push_back({{-0.012, std::min(y0, y1), -0.03}, {0.012, std::max(y0, y1), table::kNetHeight},
-                     {0.08f, 0.08f, 0.1f}, 0});
+    boxes.push_back({{-0.012, std::min(y0, y1), -0.03},
+                     {0.012, std::max(y0, y1), table::kNetHeight},
+                     {0.08f, 0.08f, 0.1f},
+                     0});
   }
   boxes.push_back({{-0.002, -table::kNetHalfLength, table::kNetHeight - 0.015},
-                   {0.002, table::kNetHalfLength, table::kNetHeight}, {0.92f, 0.92f, 0.92f}, 0});
+                   {0.002, table::kNetHalfLength, table::kNetHeight},
+                   {0.92f, 0.92f, 0.92f},
+                   0});
   return boxes;
 }
 
@@ -100,7 +108,7 @@ Rgb RoomColor(const Eigen::Vector3d& p, int face) {
     const float stripe = (static_cast<int>(std::floor(p.y() / 0.5)) % 2 == 0) ? 1.0f : 0.94f;
     return {0.40f * stripe, 0.17f * stripe, 0.13f * stripe};
   }
-  if (face == 1) return {0.85f, 0.85f, 0.86f};  // ceiling
+  if (face == 1) return {0.85f, 0.85f, 0.86f};                     // ceiling
   if (p.z() < table::kFloorZ + 0.75) return {0.08f, 0.1f, 0.28f};  // barrier band
   return {0.72f, 0.70f, 0.64f};
 }
@@ -177,8 +185,10 @@ CameraRenderer::CameraRenderer(const Camera& camera, const SceneOptions& scene,
   noise_chroma_.resize(luma);
   std::normal_distribution<double> n_luma(0.0, options_.noise_sigma_luma);
   std::normal_distribution<double> n_chroma(0.0, options_.noise_sigma_chroma);
-  for (auto& x : noise_luma_) x = static_cast<int8_t>(std::clamp(std::lround(n_luma(rng)), -127L, 127L));
-  for (auto& x : noise_chroma_) x = static_cast<int8_t>(std::clamp(std::lround(n_chroma(rng)), -127L, 127L));
+  for (auto& x : noise_luma_)
+    x = static_cast<int8_t>(std::clamp(std::lround(n_luma(rng)), -127L, 127L));
+  for (auto& x : noise_chroma_)
+    x = static_cast<int8_t>(std::clamp(std::lround(n_chroma(rng)), -127L, 127L));
 }
 
 Eigen::Vector2d CameraRenderer::Normalized(double u, double v) const {
@@ -217,16 +227,20 @@ void CameraRenderer::RenderStatic() {
     for (int a = 0; a < 3; ++a) {
       if (std::abs(d[a]) < 1e-15) continue;
       double bound;
-      if (a == 0) bound = d[a] > 0 ? kRoomX : -kRoomX;
-      else if (a == 1) bound = d[a] > 0 ? kRoomY : -kRoomY;
-      else bound = d[a] > 0 ? kCeiling : table::kFloorZ;
+      if (a == 0)
+        bound = d[a] > 0 ? kRoomX : -kRoomX;
+      else if (a == 1)
+        bound = d[a] > 0 ? kRoomY : -kRoomY;
+      else
+        bound = d[a] > 0 ? kCeiling : table::kFloorZ;
       const double t = (bound - origin[a]) / d[a];
       if (t > 0 && t < best) {
         best = t;
         face = a == 2 ? (d[a] > 0 ? 1 : 0) : 2;
       }
     }
-    Eigen::Vector3d normal = face == 0 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-d.normalized());
+    Eigen::Vector3d normal =
+        face == 0 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-d.normalized());
     if (face >= 0) color = Shade(RoomColor(origin + best * d, face), normal, 0.7);
     for (const Box& box : boxes) {
       double t;
@@ -325,7 +339,8 @@ void CameraRenderer::RestoreWork(const Rect& r) {
 void CameraRenderer::WriteRect(const Rect& r, I420Image* out) const {
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
   for (int v = r.y0; v < r.y1; ++v) {
-    for (int u = r.x0; u < r.x1; ++u) out->y()[v * w_ + u] = Clamp8(work_yuv_[static_cast<std::size_t>(v) * w_ + u]);
+    for (int u = r.x0; u < r.x1; ++u)
+      out->y()[v * w_ + u] = Clamp8(work_yuv_[static_cast<std::size_t>(v) * w_ + u]);
   }
   const int cw = w_ / 2;
   for (int v = r.y0 / 2; v < r.y1 / 2; ++v) {
@@ -353,9 +368,9 @@ CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) 
       double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
       bool behind = false;
       for (int c = 0; c < 8 && !behind; ++c) {
-        const Eigen::Vector3d p = e.c + Eigen::Vector3d((c & 1) ? e.r.x() : -e.r.x(),
-                                                        (c & 2) ? e.r.y() : -e.r.y(),
-                                                        (c & 4) ? e.r.z() : -e.r.z());
+        const Eigen::Vector3d p =
+            e.c + Eigen::Vector3d((c & 1) ? e.r.x() : -e.r.x(), (c & 2) ? e.r.y() : -e.r.y(),
+                                  (c & 4) ? e.r.z() : -e.r.z());
         const auto px = camera_.Project(p);
         if (!px) {
           behind = true;
@@ -375,8 +390,10 @@ CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) 
           double t;
           if (!HitEllipsoid(e, origin, d, &t) || t >= work_depth_[i]) continue;
           const Eigen::Vector3d p = origin + t * d;
-          const Eigen::Vector3d normal = (p - e.c).cwiseQuotient(e.r.cwiseProduct(e.r)).normalized();
-          ToYuv(Shade(e.color, normal, 0.5), &work_yuv_[i], &work_yuv_[n + i], &work_yuv_[2 * n + i]);
+          const Eigen::Vector3d normal =
+              (p - e.c).cwiseQuotient(e.r.cwiseProduct(e.r)).normalized();
+          ToYuv(Shade(e.color, normal, 0.5), &work_yuv_[i], &work_yuv_[n + i],
+                &work_yuv_[2 * n + i]);
           work_depth_[i] = static_cast<float>(t);
         }
       }
@@ -418,7 +435,8 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
       float sy = 0, su = 0, sv = 0;
       int hits = 0;
       for (int s = 0; s < samples; ++s) {
-        const int cell = (s * 11) % 16;  // a 4x4 stratified subpixel pattern, decorrelated from time
+        const int cell =
+            (s * 11) % 16;  // a 4x4 stratified subpixel pattern, decorrelated from time
         const double du = ((cell % 4) + 0.5) / 4.0 - 0.5, dv = ((cell / 4) + 0.5) / 4.0 - 0.5;
         const Eigen::Vector2d nrm = Normalized(u + du, v + dv);
         const Eigen::Vector3d d(nrm.x(), nrm.y(), 1.0);
@@ -433,7 +451,8 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
         const Eigen::Vector3d reflect = 2.0 * normal.dot(light) * normal - light;
         // Halls light a matte ball from many lamps: mostly ambient, a little sun, a soft highlight.
         Rgb col = Shade(albedo, normal, 0.8);
-        const float spec = 0.08f * static_cast<float>(std::pow(std::max(0.0, reflect.dot(view)), 30.0));
+        const float spec =
+            0.08f * static_cast<float>(std::pow(std::max(0.0, reflect.dot(view)), 30.0));
         col = {col.r + spec, col.g + spec, col.b + spec};
         float yy, uu, vv;
         ToYuv(col, &yy, &uu, &vv);

@@ -20,7 +20,7 @@
 namespace p4::sim {
 
 struct RenderOptions {
-  double noise_sigma_luma = 2.0;    // sensor noise, 8-bit levels
+  double noise_sigma_luma = 2.0;  // sensor noise, 8-bit levels
   double noise_sigma_chroma = 1.5;
   int static_supersampling = 3;  // per axis, for the background (3 => 9 rays a pixel)
   int ball_min_samples = 16;     // rays per pixel for the ball (AA and blur share them)
@@ -57,7 +57,7 @@ class CameraRenderer {
   SceneOptions scene_;
   RenderOptions options_;
   int w_ = 0, h_ = 0;
-  std::vector<float> undistorted_;  // 2 floats a pixel when the camera has distortion
+  std::vector<float> undistorted_;                // 2 floats a pixel when the camera has distortion
   std::vector<float> static_yuv_, static_depth_;  // full-resolution Y, U, V planes; z depth
   std::vector<float> work_yuv_, work_depth_;
   I420Image static_i420_;

@@ -4,11 +4,10 @@
 // (paper §2). World frame of DESIGN.md, metres.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace p4::sim {
 
@@ -23,7 +22,7 @@ struct MarkerQuad {
 };
 
 struct SceneOptions {
-  bool orange_ball = true;    // else white
+  bool orange_ball = true;  // else white
   bool players = true;
   bool orange_shirt = false;  // player B wears an orange-ish shirt (a hard distractor)
   std::vector<MarkerQuad> markers;

@@ -1,9 +1,8 @@
 #include "p4/sim/shot_solver.h"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <functional>
-
-#include <Eigen/Dense>
 
 namespace p4::sim {
 namespace {
@@ -51,9 +50,9 @@ Flight Fly(BallState s, const BallParams& p, int bounces = 0) {
 
 // Levenberg-Marquardt on the 3 residuals with a forward-difference Jacobian; a candidate whose
 // flight has no residual (e.g. never reaches the net) counts as a failed step.
-std::optional<Eigen::Vector3d> Solve(const std::function<std::optional<Eigen::Vector3d>(
-                                         const Eigen::Vector3d&)>& residual,
-                                     Eigen::Vector3d v) {
+std::optional<Eigen::Vector3d> Solve(
+    const std::function<std::optional<Eigen::Vector3d>(const Eigen::Vector3d&)>& residual,
+    Eigen::Vector3d v) {
   auto r = residual(v);
   if (!r) return std::nullopt;
   double lambda = 1e-3;
@@ -104,8 +103,8 @@ std::optional<Eigen::Vector3d> SolveRallyShot(const BallState& start, const Rall
     s.velocity = v;
     const Flight f = Fly(s, params);
     if (f.num_landings < 1 || std::isnan(f.net_z)) return std::nullopt;
-    return Eigen::Vector3d(f.landings[0].x() - goal.landing.x(), f.landings[0].y() - goal.landing.y(),
-                           f.net_z - goal.net_z);
+    return Eigen::Vector3d(f.landings[0].x() - goal.landing.x(),
+                           f.landings[0].y() - goal.landing.y(), f.net_z - goal.net_z);
   };
   const Eigen::Vector3d target(goal.landing.x(), goal.landing.y(), params.radius);
   // Try a few flight times for the starting guess: fast and flat to slow and high.

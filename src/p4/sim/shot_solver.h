@@ -1,11 +1,11 @@
 // The simulated players' aim: the racket velocity that sends the ball, with a given spin, to a
 // chosen landing point. Solved by Newton iterations on the flight model (drag and Magnus,
-// ignoring table outline and net; Levenberg-Marquardt), so the landing is exact for the simulator's own physics.
+// ignoring table outline and net; Levenberg-Marquardt), so the landing is exact for the simulator's
+// own physics.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "p4/sim/ball_physics.h"
 

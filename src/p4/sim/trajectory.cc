@@ -18,10 +18,12 @@ void Trajectory::EndSegment() {
 
 std::optional<BallState> Trajectory::At(double t) const {
   // First sample with time > t; the interval is [it - 1, it].
-  const auto it = std::upper_bound(samples_.begin(), samples_.end(), t,
-                                   [](double value, const TrajectorySample& s) { return value < s.t; });
+  const auto it =
+      std::upper_bound(samples_.begin(), samples_.end(), t,
+                       [](double value, const TrajectorySample& s) { return value < s.t; });
   if (it == samples_.begin() || it == samples_.end()) {
-    if (it == samples_.end() && !samples_.empty() && samples_.back().t == t) return samples_.back().state;
+    if (it == samples_.end() && !samples_.empty() && samples_.back().t == t)
+      return samples_.back().state;
     return std::nullopt;
   }
   const TrajectorySample& b = *it;
@@ -32,8 +34,9 @@ std::optional<BallState> Trajectory::At(double t) const {
   const double s = (t - a.t) / h;
   const double s2 = s * s, s3 = s2 * s;
   BallState out;
-  out.position = (2 * s3 - 3 * s2 + 1) * a.state.position + (s3 - 2 * s2 + s) * h * a.state.velocity +
-                 (-2 * s3 + 3 * s2) * b.state.position + (s3 - s2) * h * b.state.velocity;
+  out.position = (2 * s3 - 3 * s2 + 1) * a.state.position +
+                 (s3 - 2 * s2 + s) * h * a.state.velocity + (-2 * s3 + 3 * s2) * b.state.position +
+                 (s3 - s2) * h * b.state.velocity;
   out.velocity = (1 - s) * a.state.velocity + s * b.state.velocity;
   out.spin = (1 - s) * a.state.spin + s * b.state.spin;
   return out;
