@@ -2,16 +2,23 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "p4/core/error.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(int argc, char** argv) {
   CLI::App app{"P4: real-time 3D table-tennis ball tracking, scoring and replay"};
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "More log output");
-  const auto simulate = p4::app::AddSimulateCommand(app);
+  const std::vector<std::pair<std::string, std::function<int()>>> commands = {
+      {"simulate", p4::app::AddSimulateCommand(app)},
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -20,13 +27,25 @@ int main(int argc, char** argv) {
   spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
   spdlog::set_pattern("%^[%l]%$ %v");
   try {
-    if (app.got_subcommand("simulate")) return simulate();
+    for (const auto& [name, run] : commands) {
+      if (app.got_subcommand(name)) return run();
+    }
   } catch (const p4::Error& e) {
     spdlog::error("{}", e.what());
     return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("unexpected error: {}", e.what());
-    return 3;
   }
   return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "p4track: unexpected error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "p4track: unexpected error\n");
+  }
+  return 3;
 }

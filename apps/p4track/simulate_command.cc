@@ -165,6 +165,7 @@ int Run(const SimulateArgs& a) {
     }
   };
   std::vector<std::thread> threads;
+  threads.reserve(workers);
   for (int i = 0; i < workers; ++i) threads.emplace_back(work);
   const int64_t total = frames * rig.size();
   while (done < total) {

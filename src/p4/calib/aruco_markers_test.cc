@@ -17,7 +17,7 @@ TEST(ArucoModules, MatchOpenCvsDictionary) {
   ASSERT_EQ(cells, 6);
   for (int i = 0; i < 6; ++i) {  // the border is black
     EXPECT_EQ(black[i], 1);
-    EXPECT_EQ(black[30 + i], 1);
+    EXPECT_EQ(black[static_cast<std::size_t>(30 + i)], 1);
     EXPECT_EQ(black[i * 6], 1);
     EXPECT_EQ(black[i * 6 + 5], 1);
   }

@@ -31,7 +31,7 @@ std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
     b += p * ray.origin;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(a);
-  const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
+  const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
   TriangulationResult result;
   result.conditioning = lambda(2) > 0.0 ? lambda(0) / lambda(2) : 0.0;
   if (!(result.conditioning >= options.min_conditioning) || lambda(0) <= 0.0) return std::nullopt;

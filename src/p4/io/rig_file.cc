@@ -1,5 +1,7 @@
 #include "p4/io/rig_file.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -91,7 +93,7 @@ std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& ke
   }
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i])) {
-      throw Error(where + ": " + key + ": element " + std::to_string(i) + " is not finite");
+      throw Error(fmt::format("{}: {}: element {} is not finite", where, key, i));
     }
   }
   return values;
@@ -157,7 +159,7 @@ Rig ReadRig(const std::string& path) {
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
     camera.cam_from_world.translation = Eigen::Vector3d(t[0], t[1], t[2]);
     std::string why;
-    if (!ValidateCamera(camera, &why)) throw Error(where + ": " + why);
+    if (!ValidateCamera(camera, &why)) throw Error(fmt::format("{}: {}", where, why));
     rig.cameras.push_back(camera);
     ++index;
   }

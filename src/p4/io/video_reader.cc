@@ -81,7 +81,8 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
         for (int p = 0; p < 3; ++p) {
           const int rows = p == 0 ? h : h / 2;
           for (int r = 0; r < rows; ++r) {
-            std::memcpy(dst[p] + r * dst_stride[p], m.frame->data[p] + r * m.frame->linesize[p],
+            std::memcpy(dst[p] + static_cast<std::ptrdiff_t>(r) * dst_stride[p],
+                        m.frame->data[p] + static_cast<std::ptrdiff_t>(r) * m.frame->linesize[p],
                         dst_stride[p]);
           }
         }

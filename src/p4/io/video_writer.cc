@@ -135,8 +135,8 @@ void VideoWriter::Write(const I420Image& image) {
   const int heights[3] = {image.height(), image.chroma_height(), image.chroma_height()};
   for (int p = 0; p < 3; ++p) {
     for (int row = 0; row < heights[p]; ++row) {
-      std::memcpy(m.frame->data[p] + row * m.frame->linesize[p], planes[p] + row * widths[p],
-                  widths[p]);
+      std::memcpy(m.frame->data[p] + static_cast<std::ptrdiff_t>(row) * m.frame->linesize[p],
+                  planes[p] + static_cast<std::ptrdiff_t>(row) * widths[p], widths[p]);
     }
   }
   m.frame->pts = m.next_pts++;

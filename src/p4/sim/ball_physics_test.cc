@@ -20,7 +20,7 @@ ContactEvent FlyUntil(BallState* s, Contact kind, double max_t, const BallParams
                       double* apex = nullptr) {
   double t = 0.0;
   while (t < max_t) {
-    const ContactEvent e = WorldStep(s, t, 0.0005, p);
+    ContactEvent e = WorldStep(s, t, 0.0005, p);
     t += 0.0005;
     if (apex) *apex = std::max(*apex, s->position.z());
     if (e.kind == kind) return e;

@@ -347,7 +347,8 @@ void CameraRenderer::WriteRect(const Rect& r, I420Image* out) const {
     for (int u = r.x0 / 2; u < r.x1 / 2; ++u) {
       for (int p = 1; p <= 2; ++p) {
         const float* plane = &work_yuv_[p * n];
-        const std::size_t i = static_cast<std::size_t>(2 * v) * w_ + 2 * u;
+        const std::size_t i =
+            static_cast<std::size_t>(2 * v) * w_ + static_cast<std::size_t>(2 * u);
         const float mean = 0.25f * (plane[i] + plane[i + 1] + plane[i + w_] + plane[i + w_ + 1]);
         (p == 1 ? out->u() : out->v())[v * cw + u] = Clamp8(mean);
       }
@@ -437,7 +438,8 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
       for (int s = 0; s < samples; ++s) {
         const int cell =
             (s * 11) % 16;  // a 4x4 stratified subpixel pattern, decorrelated from time
-        const double du = ((cell % 4) + 0.5) / 4.0 - 0.5, dv = ((cell / 4) + 0.5) / 4.0 - 0.5;
+        const double du = ((cell % 4) + 0.5) / 4.0 - 0.5,
+                     dv = ((cell >> 2) + 0.5) / 4.0 - 0.5;  // row of the grid
         const Eigen::Vector2d nrm = Normalized(u + du, v + dv);
         const Eigen::Vector3d d(nrm.x(), nrm.y(), 1.0);
         const Eigen::Vector3d& c = centres[s % samples_t];

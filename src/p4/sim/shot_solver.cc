@@ -109,7 +109,7 @@ std::optional<Eigen::Vector3d> SolveRallyShot(const BallState& start, const Rall
   const Eigen::Vector3d target(goal.landing.x(), goal.landing.y(), params.radius);
   // Try a few flight times for the starting guess: fast and flat to slow and high.
   for (double T : {0.35, 0.55, 0.8, 1.1}) {
-    const auto v = Solve(residual, BallisticVelocity(start.position, target, T, params.gravity));
+    auto v = Solve(residual, BallisticVelocity(start.position, target, T, params.gravity));
     if (v) return v;
   }
   return std::nullopt;
