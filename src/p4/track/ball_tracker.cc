@@ -1,0 +1,158 @@
+#include "p4/track/ball_tracker.h"
+
+#include <cmath>
+
+#include "p4/core/table.h"
+
+namespace p4::track {
+
+bool TrackerOptions::IsValid(std::string* error) const {
+  if (!kalman.IsValid(error)) return false;
+  if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0)) {
+    if (error) *error = "gate, coast time and max speed must be positive";
+    return false;
+  }
+  if (!(bounce_restitution > 0.0 && bounce_restitution <= 1.0)) {
+    if (error) *error = "bounce restitution must be in (0, 1]";
+    return false;
+  }
+  return true;
+}
+
+BallTracker::BallTracker(const TrackerOptions& options)
+    : options_(options), filter_(options.kalman) {}
+
+void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& o) {
+  const Vector6d& x = filter->state();
+  const double z0 = x(2) - o.ball_radius, vz = x(5), g = o.kalman.gravity;
+  double hit = -1.0;
+  if (o.bounce_model && z0 >= 0.0) {
+    // z0 + vz t - g t^2 / 2 = 0, first positive root within the step.
+    const double disc = vz * vz + 2.0 * g * z0;
+    if (g > 0.0 && disc >= 0.0) {
+      const double t = (vz + std::sqrt(disc)) / g;
+      if (t >= 0.0 && t <= dt) hit = t;
+    }
+  }
+  if (hit < 0.0) {
+    filter->Predict(dt);
+    return;
+  }
+  filter->Predict(std::max(hit, 1e-9));
+  const Vector6d& at = filter->state();
+  if (!table::OnSurface(at(0), at(1))) {  // passes beside the table: no bounce
+    filter->Predict(dt - hit);
+    return;
+  }
+  // Reflect: vz -> -e vz; friction takes mu (1 + e) |vz| of the horizontal speed, at most the
+  // 40 % that leaves a spinless ball rolling; more uncertainty, for the spin we do not know.
+  const double vh = std::hypot(at(3), at(4));
+  const double loss =
+      vh > 1e-6
+          ? std::min(o.bounce_friction * (1.0 + o.bounce_restitution) * std::abs(at(5)), 0.4 * vh) /
+                vh
+          : 0.0;
+  Matrix6d d = Matrix6d::Identity();
+  d(5, 5) = -o.bounce_restitution;
+  d(3, 3) = d(4, 4) = 1.0 - loss;
+  filter->mutable_state() = d * filter->state();
+  filter->mutable_covariance() = d * filter->covariance() * d.transpose();
+  // Spin and friction change the velocity at the bounce in ways the model does not know.
+  filter->mutable_covariance().diagonal().tail<3>() += Eigen::Vector3d(1.5, 1.0, 1.0).cwiseAbs2();
+  filter->Predict(std::max(dt - hit, 1e-9));
+}
+
+void BallTracker::Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& velocity,
+                        double velocity_sigma) {
+  Vector6d x;
+  x << m.position, velocity;
+  Matrix6d p = Matrix6d::Zero();
+  p.topLeftCorner<3, 3>() = m.covariance;
+  p.bottomRightCorner<3, 3>() = velocity_sigma * velocity_sigma * Eigen::Matrix3d::Identity();
+  filter_.Reset(x, p);
+  tracking_ = true;
+  last_t_ = last_update_t_ = t;
+  pending_.reset();
+}
+
+std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Measurement>& m) {
+  TrackedState out;
+  out.t = t;
+  if (!tracking_) {
+    if (!m) {
+      pending_.reset();
+      return std::nullopt;
+    }
+    // Start from two measurements close in time (their difference gives the velocity); the
+    // first one is reported as it is.
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    double sigma = 10.0;
+    if (pending_ && t - pending_->first < FromSeconds(0.05)) {
+      const double dt = ToSeconds(t - pending_->first);
+      const Eigen::Vector3d v = (m->position - pending_->second.position) / dt;
+      if (v.norm() <= options_.max_speed) {
+        velocity = v;
+        sigma = options_.init_velocity_sigma;
+      }
+    }
+    if (sigma > 5.0) {
+      pending_ = std::make_pair(t, *m);
+      out.position = m->position;
+      out.measured = true;
+      out.cameras = m->cameras;
+      out.residual_px = m->residual_px;
+      return out;
+    }
+    Start(t, *m, velocity, sigma);
+    ++restarts_;
+    out.measured = true;
+    out.cameras = m->cameras;
+    out.residual_px = m->residual_px;
+  } else {
+    const double dt = ToSeconds(t - last_t_);
+    PredictWithBounce(&filter_, dt, options_);
+    last_t_ = t;
+    bool used = false;
+    if (m) {
+      if (filter_.Mahalanobis2(m->position, m->covariance) <= options_.gate_chi2) {
+        filter_.Update(m->position, m->covariance);
+        last_update_t_ = t;
+        pending_.reset();
+        used = true;
+      } else {
+        // Refused: restart from it when the previous refused one agrees with it (a hit).
+        if (pending_ && t - pending_->first < FromSeconds(0.05)) {
+          const double gap = ToSeconds(t - pending_->first);
+          const Eigen::Vector3d v = (m->position - pending_->second.position) / gap;
+          if (v.norm() <= options_.max_speed) {
+            Start(t, *m, v, options_.init_velocity_sigma);
+            ++restarts_;
+            used = true;
+          }
+        }
+        if (!used) pending_ = std::make_pair(t, *m);
+      }
+    }
+    if (!used && ToSeconds(t - last_update_t_) > options_.max_coast_s) {
+      tracking_ = false;
+      return std::nullopt;
+    }
+    out.measured = used;
+    if (used) {
+      out.cameras = m->cameras;
+      out.residual_px = m->residual_px;
+    }
+  }
+  out.position = filter_.state().head<3>();
+  out.velocity = filter_.state().tail<3>();
+  return out;
+}
+
+std::optional<Eigen::Vector3d> BallTracker::PredictPosition(TimeNs t) const {
+  if (!tracking_) return std::nullopt;
+  KalmanFilter copy = filter_;
+  PredictWithBounce(&copy, ToSeconds(t - last_t_), options_);
+  return copy.state().head<3>();
+}
+
+}  // namespace p4::track

@@ -1,0 +1,80 @@
+// Tracking the ball through time (paper §3.3): the Kalman filter predicts each time-stamp,
+// corrects with the triangulated measurement when it passes a gate, and fills time-stamps
+// without one with its prediction. The paper's heuristics, done better:
+// - table bounce: the prediction reflects at the table (z = ball radius inside the outline) at
+//   the exact crossing time with a restitution, instead of flipping vz after the fact;
+// - hit (and any sudden change): a measurement far from the prediction is gated out; the track
+//   restarts from it at once when it is a sound multi-camera measurement, or after a second one
+//   that agrees with it, with the velocity they imply.
+// Time: int64 ns from the caller (the frames' time-stamps), never a constant step. Pure.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "p4/core/time.h"
+#include "p4/track/kalman_filter.h"
+
+namespace p4::track {
+
+// A 3D measurement of the ball centre, world frame, metres.
+struct Measurement {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity() * 1e-6;  // m^2
+  int cameras = 0;           // views that agreed on it (1 = depth from the ball's diameter)
+  double residual_px = 0.0;  // mean reprojection error
+};
+
+struct TrackedState {
+  TimeNs t = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  bool measured = false;  // a measurement corrected this time-stamp
+  int cameras = 0;
+  double residual_px = 0.0;
+};
+
+struct TrackerOptions {
+  KalmanOptions kalman;
+  double gate_chi2 = 30.0;    // squared Mahalanobis distance that a measurement must pass
+  double max_coast_s = 0.15;  // longest prediction without measurements before the track ends
+  double max_speed = 45.0;    // m/s; a restart implying more is refused
+  bool bounce_model = true;   // reflect at the table in the prediction
+  double bounce_restitution = 0.88;
+  double bounce_friction = 0.25;
+  double ball_radius = 0.02;
+  double init_velocity_sigma = 3.0;  // m/s, of a velocity from two measurements
+
+  bool IsValid(std::string* error) const;
+};
+
+class BallTracker {
+ public:
+  explicit BallTracker(const TrackerOptions& options = {});
+
+  // One time-stamp (strictly increasing). Returns the ball state at t while a track exists.
+  std::optional<TrackedState> Step(TimeNs t, const std::optional<Measurement>& measurement);
+
+  // Where the filter expects the ball at t (> last time-stamp), without changing the track.
+  std::optional<Eigen::Vector3d> PredictPosition(TimeNs t) const;
+
+  bool tracking() const { return tracking_; }
+  int restarts() const { return restarts_; }
+
+ private:
+  // Predicts the filter to dt ahead, with the table bounce.
+  static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
+  void Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& velocity,
+             double velocity_sigma);
+
+  TrackerOptions options_;
+  KalmanFilter filter_;
+  bool tracking_ = false;
+  TimeNs last_t_ = 0;
+  TimeNs last_update_t_ = 0;
+  std::optional<std::pair<TimeNs, Measurement>> pending_;  // a measurement the gate refused
+  int restarts_ = 0;
+};
+
+}  // namespace p4::track
