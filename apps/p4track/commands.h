@@ -8,5 +8,7 @@
 namespace p4::app {
 
 std::function<int()> AddSimulateCommand(CLI::App& app);
+std::function<int()> AddTrackCommand(CLI::App& app);
+std::function<int()> AddEvalCommand(CLI::App& app);
 
 }  // namespace p4::app

@@ -18,6 +18,8 @@ int Run(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "More log output");
   const std::vector<std::pair<std::string, std::function<int()>>> commands = {
       {"simulate", p4::app::AddSimulateCommand(app)},
+      {"track", p4::app::AddTrackCommand(app)},
+      {"eval", p4::app::AddEvalCommand(app)},
   };
   try {
     app.parse(argc, argv);

@@ -4,9 +4,13 @@
 
 extern "C" {
 #include <libavcodec/avcodec.h>
+#include <libavdevice/avdevice.h>
 #include <libavformat/avformat.h>
+#include <libavutil/dict.h>
 #include <libswscale/swscale.h>
 }
+
+#include <mutex>
 
 #include "p4/core/error.h"
 #include "p4/io/av_error.h"
@@ -20,6 +24,7 @@ struct VideoReader::Impl {
   AVFrame* frame = nullptr;
   AVPacket* packet = nullptr;
   SwsContext* sws = nullptr;
+  I420Image converted;
   int stream = -1;
   VideoInfo info;
   bool draining = false;
@@ -33,10 +38,31 @@ struct VideoReader::Impl {
   }
 };
 
+bool VideoReader::IsLive(const std::string& source) {
+  return source.rfind("/dev/video", 0) == 0 || source.find("://") != std::string::npos;
+}
+
 VideoReader::VideoReader(const std::string& source) : impl_(std::make_unique<Impl>()) {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    avdevice_register_all();
+    avformat_network_init();
+  });
   Impl& m = *impl_;
   m.source = source;
-  int ret = avformat_open_input(&m.format, source.c_str(), nullptr, nullptr);
+  const AVInputFormat* input_format = nullptr;
+  AVDictionary* options = nullptr;
+  if (source.rfind("/dev/video", 0) == 0) {
+    input_format = av_find_input_format("video4linux2");
+    if (!input_format) throw Error(source + ": this FFmpeg has no V4L2 input");
+  } else if (source.rfind("rtsp://", 0) == 0) {
+    av_dict_set(&options, "rtsp_transport", "tcp", 0);
+    av_dict_set(&options, "timeout", "5000000", 0);  // us
+  } else if (source.find("://") != std::string::npos) {
+    av_dict_set(&options, "timeout", "5000000", 0);
+  }
+  int ret = avformat_open_input(&m.format, source.c_str(), input_format, &options);
+  av_dict_free(&options);
   if (ret < 0) throw Error(source + ": cannot open: " + AvError(ret));
   ret = avformat_find_stream_info(m.format, nullptr);
   if (ret < 0) throw Error(source + ": cannot read stream info: " + AvError(ret));
@@ -62,36 +88,51 @@ VideoReader::~VideoReader() = default;
 
 const VideoInfo& VideoReader::info() const { return impl_->info; }
 
-bool VideoReader::Read(I420Image* out, TimeNs* pts) {
+bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
   Impl& m = *impl_;
   while (true) {
     int ret = avcodec_receive_frame(m.codec, m.frame);
     if (ret == 0) {
       const AVRational tb = m.format->streams[m.stream]->time_base;
-      const int64_t ts =
-          m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
+      const int64_t ts = m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
       const int64_t start = m.format->streams[m.stream]->start_time;
-      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb,
-                          AVRational{1, 1'000'000'000});
+      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb, AVRational{1, 1'000'000'000});
       const int w = m.frame->width, h = m.frame->height;
-      if (out->width() != w || out->height() != h) *out = I420Image(w, h);
-      uint8_t* dst[3] = {out->y(), out->u(), out->v()};
-      const int dst_stride[3] = {w, w / 2, w / 2};
-      if (m.frame->format == AV_PIX_FMT_YUV420P) {
-        for (int p = 0; p < 3; ++p) {
-          const int rows = p == 0 ? h : h / 2;
-          for (int r = 0; r < rows; ++r) {
-            std::memcpy(dst[p] + static_cast<std::ptrdiff_t>(r) * dst_stride[p],
-                        m.frame->data[p] + static_cast<std::ptrdiff_t>(r) * m.frame->linesize[p],
-                        dst_stride[p]);
-          }
+      view->width = w;
+      view->height = h;
+      const auto plane = [&](int p, int pw, int ph) {
+        return PlaneView{m.frame->data[p], pw, ph, m.frame->linesize[p]};
+      };
+      switch (m.frame->format) {
+        case AV_PIX_FMT_YUV420P:
+        case AV_PIX_FMT_YUVJ420P:
+          view->format = PixelFormat::kI420;
+          view->planes[0] = plane(0, w, h);
+          view->planes[1] = plane(1, w / 2, h / 2);
+          view->planes[2] = plane(2, w / 2, h / 2);
+          return true;
+        case AV_PIX_FMT_NV12:
+          view->format = PixelFormat::kNV12;
+          view->planes[0] = plane(0, w, h);
+          view->planes[1] = plane(1, w / 2, h / 2);
+          view->planes[2] = {};
+          return true;
+        case AV_PIX_FMT_YUYV422:
+          view->format = PixelFormat::kYUYV;
+          view->planes[0] = plane(0, w, h);
+          view->planes[1] = view->planes[2] = {};
+          return true;
+        default: {
+          if (m.converted.width() != w || m.converted.height() != h) m.converted = I420Image(w, h);
+          uint8_t* dst[3] = {m.converted.y(), m.converted.u(), m.converted.v()};
+          const int dst_stride[3] = {w, w / 2, w / 2};
+          m.sws = sws_getCachedContext(m.sws, w, h, static_cast<AVPixelFormat>(m.frame->format), w, h,
+                                       AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr, nullptr);
+          sws_scale(m.sws, m.frame->data, m.frame->linesize, 0, h, dst, dst_stride);
+          *view = m.converted.View();
+          return true;
         }
-      } else {
-        m.sws = sws_getCachedContext(m.sws, w, h, static_cast<AVPixelFormat>(m.frame->format), w, h,
-                                     AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr, nullptr);
-        sws_scale(m.sws, m.frame->data, m.frame->linesize, 0, h, dst, dst_stride);
       }
-      return true;
     }
     if (ret == AVERROR_EOF) return false;
     if (ret != AVERROR(EAGAIN)) throw Error(m.source + ": decoding failed: " + AvError(ret));
@@ -106,12 +147,50 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
     if (m.packet->stream_index == m.stream) {
       ret = avcodec_send_packet(m.codec, m.packet);
       av_packet_unref(m.packet);
-      if (ret < 0 && ret != AVERROR(EAGAIN))
-        throw Error(m.source + ": decoding failed: " + AvError(ret));
+      if (ret < 0 && ret != AVERROR(EAGAIN)) throw Error(m.source + ": decoding failed: " + AvError(ret));
     } else {
       av_packet_unref(m.packet);
     }
   }
+}
+
+bool VideoReader::Read(I420Image* out, TimeNs* pts) {
+  ImageView view;
+  if (!ReadView(&view, pts)) return false;
+  if (out->width() != view.width || out->height() != view.height) *out = I420Image(view.width, view.height);
+  const int w = view.width, h = view.height;
+  for (int r = 0; r < h; ++r) {
+    for (int x = 0; x < w; ++x) {
+      switch (view.format) {
+        case PixelFormat::kI420:
+        case PixelFormat::kNV12:
+          out->y()[r * w + x] = view.planes[0].Row(r)[x];
+          break;
+        case PixelFormat::kYUYV:
+          out->y()[r * w + x] = view.planes[0].Row(r)[2 * x];
+          break;
+      }
+    }
+  }
+  for (int r = 0; r < h / 2; ++r) {
+    for (int x = 0; x < w / 2; ++x) {
+      uint8_t u = 0, v = 0;
+      switch (view.format) {
+        case PixelFormat::kI420:
+          u = view.planes[1].Row(r)[x], v = view.planes[2].Row(r)[x];
+          break;
+        case PixelFormat::kNV12:
+          u = view.planes[1].Row(r)[2 * x], v = view.planes[1].Row(r)[2 * x + 1];
+          break;
+        case PixelFormat::kYUYV:  // 4:2:2: take the even row's chroma
+          u = view.planes[0].Row(2 * r)[4 * x + 1], v = view.planes[0].Row(2 * r)[4 * x + 3];
+          break;
+      }
+      out->u()[r * (w / 2) + x] = u;
+      out->v()[r * (w / 2) + x] = v;
+    }
+  }
+  return true;
 }
 
 }  // namespace p4

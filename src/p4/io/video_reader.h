@@ -1,6 +1,7 @@
-// Reads a video through FFmpeg and delivers decoded frames as I420 with their presentation time
-// (nanoseconds from the stream start). Files for now; devices and network streams open the same
-// way (the tracking issue extends this reader).
+// Reads video through FFmpeg (libavformat/libavcodec/libavdevice): files, V4L2 devices
+// (/dev/videoN) and network streams (rtsp://, udp://, tcp://, http://). Frames come with their
+// presentation time in nanoseconds from the stream's start, in their native YUV format when it is
+// I420, NV12 or YUYV (no conversion), converted to I420 otherwise.
 #pragma once
 
 #include <memory>
@@ -21,12 +22,18 @@ class VideoReader {
  public:
   // Throws p4::Error naming the source when it cannot be opened or has no video stream.
   explicit VideoReader(const std::string& source);
+
+  // True for sources that are devices or network streams rather than files.
+  static bool IsLive(const std::string& source);
   ~VideoReader();
   VideoReader(const VideoReader&) = delete;
   VideoReader& operator=(const VideoReader&) = delete;
 
   const VideoInfo& info() const;
-  // The next frame; false at the end of the stream. Throws p4::Error on a decoding failure.
+  // The next frame as a view into the decoder's buffer, valid until the next call; false at the
+  // end of the stream. Throws p4::Error on a decoding failure.
+  bool ReadView(ImageView* view, TimeNs* pts);
+  // The next frame copied (and converted if need be) into an I420 image.
   bool Read(I420Image* frame, TimeNs* pts);
 
  private:

@@ -1,0 +1,96 @@
+#include "p4/eval/evaluate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+namespace p4 {
+
+std::string EvalReport::ToJson() const {
+  nlohmann::ordered_json j;
+  const auto round = [](double x, double unit) { return std::round(x / unit) * unit; };
+  j["frames"] = frames;
+  j["frames_in_play"] = frames_in_play;
+  j["frames_seen"] = frames_seen;
+  j["rows"] = rows;
+  j["measured_rows"] = measured_rows;
+  j["position_rmse_mm"] = round(position_rmse_mm, 0.001);
+  j["position_median_mm"] = round(position_median_mm, 0.001);
+  j["position_p95_mm"] = round(position_p95_mm, 0.001);
+  j["position_rmse_all_mm"] = round(position_rmse_all_mm, 0.001);
+  j["recall"] = round(recall, 1e-5);
+  j["false_positive_rate"] = round(false_positive_rate, 1e-5);
+  return j.dump(2);
+}
+
+EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,
+                    const Rig& rig, const EvalOptions& options) {
+  EvalReport report;
+  report.frames = static_cast<int>(truth.size());
+  report.rows = static_cast<int>(run.size());
+  if (truth.empty()) return report;
+  const double period = truth.size() > 1 ? (truth.back().t - truth.front().t) / (truth.size() - 1) : 1.0;
+  const auto match = [&](double t) -> const TruthRow* {
+    const auto it = std::lower_bound(truth.begin(), truth.end(), t,
+                                     [](const TruthRow& r, double value) { return r.t < value; });
+    const TruthRow* best = nullptr;
+    for (auto c : {it, it == truth.begin() ? it : it - 1}) {
+      if (c == truth.end()) continue;
+      if (std::abs(c->t - t) <= 0.5 * period && (!best || std::abs(c->t - t) < std::abs(best->t - t))) best = &*c;
+    }
+    return best;
+  };
+  std::vector<double> measured_errors;
+  double sum_all = 0.0;
+  int n_all = 0, false_positives = 0;
+  std::vector<char> has_measurement(truth.size(), 0);
+  for (const TrajectoryRow& row : run) {
+    const TruthRow* t = match(row.t);
+    const bool ball = t && t->in_play;
+    const double error_mm = ball ? 1000.0 * (row.position - t->position).norm() : 1e9;
+    if (ball) {
+      sum_all += error_mm * error_mm;
+      ++n_all;
+    }
+    if (!row.measured) continue;
+    ++report.measured_rows;
+    if (!ball || error_mm > options.false_positive_mm) {
+      ++false_positives;
+      continue;
+    }
+    measured_errors.push_back(error_mm);
+    has_measurement[t - truth.data()] = 1;
+  }
+  const int views_needed = std::min(options.min_views, rig.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (!truth[i].in_play) continue;
+    ++report.frames_in_play;
+    int views = 0;
+    for (const Camera& c : rig.cameras) views += c.Sees(truth[i].position, 2.0);
+    if (views < views_needed) continue;
+    ++report.frames_seen;
+  }
+  int recalled = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (!truth[i].in_play || !has_measurement[i]) continue;
+    int views = 0;
+    for (const Camera& c : rig.cameras) views += c.Sees(truth[i].position, 2.0);
+    if (views >= views_needed) ++recalled;
+  }
+  if (!measured_errors.empty()) {
+    double sum = 0.0;
+    for (double e : measured_errors) sum += e * e;
+    report.position_rmse_mm = std::sqrt(sum / measured_errors.size());
+    std::sort(measured_errors.begin(), measured_errors.end());
+    report.position_median_mm = measured_errors[measured_errors.size() / 2];
+    report.position_p95_mm = measured_errors[measured_errors.size() * 95 / 100];
+  }
+  report.position_rmse_all_mm = n_all ? std::sqrt(sum_all / n_all) : 0.0;
+  report.recall = report.frames_seen ? static_cast<double>(recalled) / report.frames_seen : 0.0;
+  report.false_positive_rate =
+      report.measured_rows ? static_cast<double>(false_positives) / report.measured_rows : 0.0;
+  return report;
+}
+
+}  // namespace p4

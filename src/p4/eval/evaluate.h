@@ -1,0 +1,37 @@
+// Accuracy of a tracking run against the simulator's ground truth (`p4track eval`).
+// Rows are matched by time (the nearest truth row within half a frame). Pure.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "p4/geometry/rig.h"
+#include "p4/io/run_files.h"
+
+namespace p4 {
+
+struct EvalOptions {
+  double false_positive_mm = 50.0;  // a measured row farther than this from the truth is false
+  int min_views = 2;                // recall counts frames seen by this many cameras (or all)
+};
+
+struct EvalReport {
+  int frames = 0;                    // truth rows
+  int frames_in_play = 0;
+  int frames_seen = 0;               // in play and inside >= min_views cameras' images
+  int measured_rows = 0;
+  int rows = 0;
+  double position_rmse_mm = 0.0;     // measured rows (true positives)
+  double position_median_mm = 0.0;
+  double position_p95_mm = 0.0;
+  double position_rmse_all_mm = 0.0; // every row while the ball is in play
+  double recall = 0.0;               // frames_seen with a measured row
+  double false_positive_rate = 0.0;  // measured rows far from the truth or with no ball
+
+  std::string ToJson() const;
+};
+
+EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,
+                    const Rig& rig, const EvalOptions& options = {});
+
+}  // namespace p4

@@ -1,0 +1,67 @@
+#include "p4/io/color_class_file.h"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <opencv2/core.hpp>
+
+#include "p4/core/error.h"
+
+namespace p4 {
+
+segment::ColorClassSet ReadColorClasses(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+  if (std::filesystem::file_size(path) == 0) throw Error(path + ": the file is empty");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(path, cv::FileStorage::READ)) throw Error(path + ": cannot open or parse the file");
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": cannot parse the file (" + e.msg + ")");
+  }
+  const cv::FileNode list = fs["classes"];
+  if (list.empty() || !list.isSeq()) throw Error(path + ": missing 'classes' list");
+  segment::ColorClassSet set;
+  int index = 0;
+  for (const auto& node : list) {
+    const std::string where = fmt::format("{}: classes[{}]", path, index++);
+    if (!node.isMap() || node["name"].empty() || !node["name"].isString()) {
+      throw Error(where + ": missing 'name'");
+    }
+    segment::ColorClass c;
+    c.name = static_cast<std::string>(node["name"]);
+    for (const auto& [key, range] : {std::pair{"y", &c.y}, std::pair{"u", &c.u}, std::pair{"v", &c.v}}) {
+      const cv::FileNode bounds = node[key];
+      if (bounds.empty() || !bounds.isSeq() || bounds.size() != 2) {
+        throw Error(fmt::format("{} '{}': '{}' must be [low, high]", where, c.name, key));
+      }
+      for (int k = 0; k < 2; ++k) {
+        if (!bounds[k].isInt()) throw Error(fmt::format("{} '{}': {}: not an integer", where, c.name, key));
+        const int value = static_cast<int>(bounds[k]);
+        if (value < 0 || value > 255) {
+          throw Error(fmt::format("{} '{}': {}: {} is outside 0-255", where, c.name, key, value));
+        }
+        (*range)[k] = static_cast<uint8_t>(value);
+      }
+    }
+    set.classes.push_back(c);
+  }
+  std::string why;
+  if (!set.IsValid(&why)) throw Error(path + ": " + why);
+  if (set.MaskOf("ball") == 0) throw Error(path + ": no class named ball* (the ball's classes)");
+  return set;
+}
+
+void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path) {
+  cv::FileStorage fs(path, cv::FileStorage::WRITE);
+  if (!fs.isOpened()) throw Error(path + ": cannot create the file");
+  fs << "classes" << "[";
+  for (const auto& c : classes.classes) {
+    fs << "{" << "name" << c.name;
+    fs << "y" << "[" << c.y[0] << c.y[1] << "]";
+    fs << "u" << "[" << c.u[0] << c.u[1] << "]";
+    fs << "v" << "[" << c.v[0] << c.v[1] << "]" << "}";
+  }
+  fs << "]";
+}
+
+}  // namespace p4

@@ -1,0 +1,110 @@
+#include "p4/io/run_files.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "p4/core/error.h"
+
+namespace p4 {
+
+RunWriter::RunWriter(const std::string& dir, const Rig& rig) {
+  for (const auto& c : rig.cameras) camera_names_.push_back(c.name);
+  const auto open = [&](std::ofstream& out, const std::string& name, const char* header) {
+    const std::string path = (std::filesystem::path(dir) / name).string();
+    out.open(path);
+    if (!out) throw Error(path + ": cannot create the file");
+    out << header << '\n';
+    out.flush();
+  };
+  open(trajectory_, "trajectory.csv", "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
+  open(detections_, "detections.csv", "t,camera,u,v,diameter_px,area_px,accepted");
+}
+
+void RunWriter::Write(const track::FrameSetResult& result) {
+  const double t = ToSeconds(result.t);
+  for (const auto& d : result.detections) {
+    detections_ << fmt::format("{:.6f},{},{:.3f},{:.3f},{:.2f},{},{}\n", t, camera_names_[d.camera],
+                               d.pixel.x(), d.pixel.y(), d.diameter_px, d.area_px, d.accepted ? 1 : 0);
+  }
+  if (result.state) {
+    const auto& s = *result.state;
+    trajectory_ << fmt::format("{:.6f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.4f},{},{},{:.3f}\n", t,
+                               s.position.x(), s.position.y(), s.position.z(), s.velocity.x(),
+                               s.velocity.y(), s.velocity.z(), s.measured ? 1 : 0, s.cameras,
+                               s.residual_px);
+  }
+  trajectory_.flush();
+  detections_.flush();
+}
+
+namespace {
+
+std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std::string& header) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open");
+  std::string line;
+  if (!std::getline(in, line) || line != header) {
+    throw Error(path + ": line 1: expected the header '" + header + "'");
+  }
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(std::move(cells));
+  }
+  return rows;
+}
+
+double Number(const std::string& path, std::size_t row, const std::string& cell) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(cell, &used);
+    if (used != cell.size()) throw std::invalid_argument(cell);
+    return v;
+  } catch (const std::exception&) {
+    throw Error(fmt::format("{}: line {}: '{}' is not a number", path, row + 2, cell));
+  }
+}
+
+}  // namespace
+
+std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
+  const auto rows = ReadCsv(path, "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
+  std::vector<TrajectoryRow> out;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (r.size() != 10) throw Error(fmt::format("{}: line {}: expected 10 fields", path, i + 2));
+    TrajectoryRow row;
+    row.t = Number(path, i, r[0]);
+    row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
+    row.velocity = {Number(path, i, r[4]), Number(path, i, r[5]), Number(path, i, r[6])};
+    row.measured = Number(path, i, r[7]) != 0.0;
+    row.cameras = static_cast<int>(Number(path, i, r[8]));
+    row.residual_px = Number(path, i, r[9]);
+    out.push_back(row);
+  }
+  return out;
+}
+
+std::vector<TruthRow> ReadTruthCsv(const std::string& path) {
+  const auto rows = ReadCsv(path, "t,x,y,z,vx,vy,vz,wx,wy,wz,in_play");
+  std::vector<TruthRow> out;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    if (r.size() != 11) throw Error(fmt::format("{}: line {}: expected 11 fields", path, i + 2));
+    TruthRow row;
+    row.t = Number(path, i, r[0]);
+    row.in_play = r[10] == "1";
+    if (row.in_play) row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
+    out.push_back(row);
+  }
+  return out;
+}
+
+}  // namespace p4

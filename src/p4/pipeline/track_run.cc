@@ -1,0 +1,83 @@
+#include "p4/pipeline/track_run.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "p4/core/error.h"
+#include "p4/io/run_files.h"
+#include "p4/pipeline/frame_set_reader.h"
+
+namespace p4 {
+
+std::string TrackRunSummary::Report() const {
+  return fmt::format(
+      "{} frame sets ({:.2f} s of video) in {:.2f} s: {} measurements ({:.1f}% of frame sets, {} "
+      "from >= 2 cameras), {:.0f} measurements per second, ROI hit rate {:.1f}%",
+      frame_sets, video_seconds, wall_seconds, measured,
+      frame_sets ? 100.0 * measured / frame_sets : 0.0, multi_view, measurements_per_second(),
+      roi_searches ? 100.0 * roi_hits / roi_searches : 0.0);
+}
+
+TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classes,
+                            const std::vector<std::string>& sources, const std::string& out_dir,
+                            const track::FrameSetOptions& options,
+                            const std::function<void(int64_t)>& progress) {
+  if (static_cast<int>(sources.size()) != rig.size()) {
+    throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
+                            sources.size()));
+  }
+  std::string why;
+  if (!options.IsValid(&why)) throw Error("tracking options: " + why);
+  FrameSetReader reader(sources);
+  for (int i = 0; i < reader.size(); ++i) {
+    const VideoInfo& info = reader.info(i);
+    const Camera& camera = rig.cameras[i];
+    if (info.width != camera.width || info.height != camera.height) {
+      throw Error(fmt::format("{}: the video is {}x{} but rig camera '{}' is {}x{}", sources[i],
+                              info.width, info.height, camera.name, camera.width, camera.height));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw Error(out_dir + ": cannot create the folder (" + ec.message() + ")");
+  RunWriter writer(out_dir, rig);
+  track::FrameSetTracker tracker(rig, classes, options);
+
+  TrackRunSummary summary;
+  const auto start = std::chrono::steady_clock::now();
+  auto last_progress = start;
+  FrameSet set;
+  std::optional<TimeNs> first_t;
+  TimeNs last_t = 0;
+  while (reader.Next(&set)) {
+    if (!first_t) first_t = set.t;
+    if (set.t <= last_t && summary.frame_sets > 0) continue;  // time must increase
+    last_t = set.t;
+    const track::FrameSetResult result = tracker.Process(set.t, set.images);
+    writer.Write(result);
+    ++summary.frame_sets;
+    if (result.measurement) {
+      ++summary.measured;
+      if (result.measurement->cameras >= 2) ++summary.multi_view;
+    }
+    if (result.state) ++summary.states;
+    for (const auto& s : result.searches) {
+      if (s.roi.empty()) continue;
+      ++summary.roi_searches;
+      if (!s.fell_back) ++summary.roi_hits;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (progress && now - last_progress > std::chrono::milliseconds(500)) {
+      last_progress = now;
+      progress(summary.frame_sets);
+    }
+  }
+  summary.video_seconds = first_t ? ToSeconds(last_t - *first_t) : 0.0;
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace p4

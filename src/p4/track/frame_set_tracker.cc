@@ -1,0 +1,214 @@
+#include "p4/track/frame_set_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "p4/core/table.h"
+#include "p4/geometry/epipolar.h"
+#include "p4/geometry/sphere_depth.h"
+#include "p4/geometry/triangulation.h"
+
+namespace p4::track {
+
+bool FrameSetOptions::IsValid(std::string* error) const {
+  if (!segment.IsValid(error) || !tracker.IsValid(error)) return false;
+  if (candidates_per_camera < 1 || !(epipolar_px > 0.0) || !(reprojection_px > 0.0)) {
+    if (error) *error = "candidates, epipolar and reprojection bounds must be positive";
+    return false;
+  }
+  if (roi_min_px < 8 || roi_max_px < roi_min_px) {
+    if (error) *error = "ROI sizes: need 8 <= min <= max";
+    return false;
+  }
+  return true;
+}
+
+FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& classes,
+                                 const FrameSetOptions& options)
+    : rig_(rig),
+      lut_(classes.BuildLut()),
+      options_(options),
+      finders_(rig.cameras.size()),
+      tracker_(options.tracker) {
+  options_.segment.mask = classes.MaskOf("ball");
+}
+
+namespace {
+
+double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
+  const double depth = (camera.cam_from_world * point).z();
+  return depth > 0.0 ? 2.0 * table::kBallRadius * camera.fx / depth : 0.0;
+}
+
+}  // namespace
+
+FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<ImageView>> images) {
+  FrameSetResult result;
+  result.t = t;
+  const int n = rig_.size();
+  result.searches.resize(n);
+  const std::optional<Eigen::Vector3d> predicted = tracker_.PredictPosition(t);
+  std::vector<std::vector<Detection>> candidates(n);
+  for (int c = 0; c < n && c < static_cast<int>(images.size()); ++c) {
+    if (!images[c]) continue;
+    const Camera& camera = rig_.cameras[c];
+    CameraSearch& search = result.searches[c];
+    search.present = true;
+    if (options_.use_roi && predicted) {
+      const auto px = camera.Project(*predicted);
+      if (px) {
+        const double d = ExpectedDiameterPx(camera, *predicted);
+        const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)), options_.roi_min_px,
+                                    options_.roi_max_px);
+        search.roi = segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
+      }
+    }
+    int found = 0;
+    if (!search.roi.empty()) {
+      found = finders_[c].Find(*images[c], lut_, search.roi, options_.segment, &regions_);
+    }
+    if (found == 0) {
+      search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
+      found = finders_[c].Find(*images[c], lut_, {}, options_.segment, &regions_);
+    }
+    for (int k = 0; k < std::min(found, options_.candidates_per_camera); ++k) {
+      const segment::Region& r = regions_[k];
+      candidates[c].push_back({c, {r.cx, r.cy}, r.minor_diameter, r.area, false});
+    }
+  }
+
+  std::vector<std::pair<int, int>> used;
+  result.measurement = Associate(candidates, predicted, &used);
+  if (!result.measurement && options_.single_camera_fallback) {
+    result.measurement = SingleView(candidates, predicted, &used);
+  }
+  for (const auto& [c, k] : used) candidates[c][k].accepted = true;
+  for (auto& list : candidates) {
+    for (auto& d : list) result.detections.push_back(d);
+  }
+  result.state = tracker_.Step(t, result.measurement);
+  return result;
+}
+
+std::optional<Measurement> FrameSetTracker::Associate(
+    const std::vector<std::vector<Detection>>& candidates,
+    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
+  const int n = rig_.size();
+  struct Hypothesis {
+    std::vector<std::pair<int, int>> members;  // (camera, candidate)
+    PointEstimate estimate;
+    double prediction_distance = 0.0;
+    int area = 0;
+  };
+  std::optional<Hypothesis> best;
+  const auto better = [&](const Hypothesis& a, const Hypothesis& b) {
+    if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
+    if (predicted) return a.prediction_distance < b.prediction_distance;
+    if (a.area != b.area) return a.area > b.area;
+    return a.estimate.mean_reprojection_px < b.estimate.mean_reprojection_px;
+  };
+  std::vector<Observation> observations;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int a = 0; a < static_cast<int>(candidates[i].size()); ++a) {
+        for (int b = 0; b < static_cast<int>(candidates[j].size()); ++b) {
+          const Detection& da = candidates[i][a];
+          const Detection& db = candidates[j][b];
+          if (EpipolarDistance(rig_.cameras[i], da.pixel, rig_.cameras[j], db.pixel) >
+              options_.epipolar_px) {
+            continue;
+          }
+          observations = {{i, da.pixel}, {j, db.pixel}};
+          auto estimate = TriangulateObservations(rig_.cameras, observations);
+          if (!estimate) continue;
+          Hypothesis h;
+          h.members = {{i, a}, {j, b}};
+          // Other views: the candidate nearest to the point's projection, if near enough.
+          for (int k = 0; k < n; ++k) {
+            if (k == i || k == j) continue;
+            const auto px = rig_.cameras[k].Project(estimate->point);
+            if (!px) continue;
+            int best_k = -1;
+            double best_d = options_.reprojection_px;
+            for (int m = 0; m < static_cast<int>(candidates[k].size()); ++m) {
+              const double d = (candidates[k][m].pixel - *px).norm();
+              if (d < best_d) best_d = d, best_k = m;
+            }
+            if (best_k >= 0) {
+              h.members.emplace_back(k, best_k);
+              observations.push_back({k, candidates[k][best_k].pixel});
+            }
+          }
+          if (h.members.size() > 2) {
+            estimate = TriangulateObservations(rig_.cameras, observations);
+            if (!estimate) continue;
+          }
+          if (estimate->mean_reprojection_px > options_.reprojection_px) continue;
+          h.estimate = *estimate;
+          for (const auto& [c, m] : h.members) h.area += candidates[c][m].area_px;
+          if (predicted) {
+            h.prediction_distance = (estimate->point - *predicted).norm();
+            if (h.prediction_distance > options_.max_prediction_distance) continue;
+          }
+          if (!best || better(h, *best)) best = h;
+        }
+      }
+    }
+  }
+  if (!best) return std::nullopt;
+  *used = best->members;
+  Measurement m;
+  m.position = best->estimate.point;
+  m.cameras = static_cast<int>(best->members.size());
+  m.residual_px = best->estimate.mean_reprojection_px;
+  // Isotropic covariance from the centroid noise at the views' mean depth (a fair bound for
+  // cameras that see the ball from well-separated directions).
+  double depth = 0.0, focal = 0.0;
+  for (const auto& [c, k] : best->members) {
+    depth += (rig_.cameras[c].cam_from_world * m.position).z();
+    focal += rig_.cameras[c].fx;
+  }
+  const double sigma = std::max(0.001, 1.5 * options_.pixel_sigma * depth / focal /
+                                           std::sqrt(static_cast<double>(m.cameras) - 1.0));
+  m.covariance = sigma * sigma * Eigen::Matrix3d::Identity();
+  return m;
+}
+
+std::optional<Measurement> FrameSetTracker::SingleView(
+    const std::vector<std::vector<Detection>>& candidates,
+    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
+  std::optional<Measurement> best;
+  double best_score = 0.0;
+  std::pair<int, int> best_id;
+  for (int c = 0; c < rig_.size(); ++c) {
+    const Camera& camera = rig_.cameras[c];
+    for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
+      const Detection& d = candidates[c][k];
+      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px + options_.diameter_bias_px,
+                                               table::kBallRadius);
+      if (!sphere) continue;
+      // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
+      double score = -static_cast<double>(d.area_px);
+      if (predicted) {
+        score = (sphere->point - *predicted).norm();
+        if (score > options_.max_prediction_distance) continue;
+      }
+      if (best && score >= best_score) continue;
+      Measurement m;
+      m.position = sphere->point;
+      m.cameras = 1;
+      const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
+      const double along = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+      const double across = sphere->distance * options_.pixel_sigma / camera.fx;
+      m.covariance = along * along * ray * ray.transpose() +
+                     across * across * (Eigen::Matrix3d::Identity() - ray * ray.transpose());
+      best = m;
+      best_score = score;
+      best_id = {c, k};
+    }
+  }
+  if (best) *used = {best_id};
+  return best;
+}
+
+}  // namespace p4::track

@@ -1,0 +1,93 @@
+// One time-stamp of P4 (paper Figure 3): segment every camera's image inside the region of
+// interest the filter predicts (falling back to the whole image), keep each camera's largest
+// regions as candidates, find the candidates that agree across cameras by their epipolar lines
+// and reprojection (paper §3.4), triangulate them (least squares over all agreeing views,
+// §3.2) or, seen by one camera only, place the ball by its diameter; then filter (§3.3).
+//
+// Frames: images in each camera's pixels, points in the world frame (DESIGN.md). Pure: the
+// images and their time come in as arguments; buffers are kept between calls.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "p4/core/image.h"
+#include "p4/core/time.h"
+#include "p4/geometry/rig.h"
+#include "p4/segment/blob_finder.h"
+#include "p4/segment/color_classes.h"
+#include "p4/track/ball_tracker.h"
+
+namespace p4::track {
+
+struct FrameSetOptions {
+  segment::SegmentOptions segment;  // mask is set from the classes ("ball*")
+  int candidates_per_camera = 4;
+  double epipolar_px = 4.0;      // max distance of a candidate from another view's epipolar line
+  double reprojection_px = 5.0;  // max reprojection error of an agreeing view
+  bool use_roi = true;
+  int roi_min_px = 40;           // the paper's fixed 40 px window...
+  int roi_max_px = 240;          // ...grown with the predicted ball size and speed
+  bool single_camera_fallback = true;
+  double pixel_sigma = 0.5;      // centroid noise, px (for measurement covariances)
+  double diameter_sigma = 0.8;   // diameter noise, px
+  double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
+  double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
+  TrackerOptions tracker;
+
+  bool IsValid(std::string* error) const;
+};
+
+// One candidate region of one camera.
+struct Detection {
+  int camera = 0;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // region centroid
+  double diameter_px = 0.0;                         // minor diameter (blur-proof)
+  int area_px = 0;
+  bool accepted = false;  // part of this time-stamp's measurement
+};
+
+struct CameraSearch {
+  segment::Roi roi;        // the window searched first (empty: whole image)
+  bool fell_back = false;  // nothing in the window: the whole image was searched
+  bool present = false;    // the camera had an image in this set
+};
+
+struct FrameSetResult {
+  TimeNs t = 0;
+  std::optional<Measurement> measurement;
+  std::optional<TrackedState> state;
+  std::vector<Detection> detections;
+  std::vector<CameraSearch> searches;  // one per camera of the rig
+};
+
+class FrameSetTracker {
+ public:
+  // Preconditions: rig and options valid, classes valid and with a "ball" class.
+  FrameSetTracker(const Rig& rig, const segment::ColorClassSet& classes,
+                  const FrameSetOptions& options);
+
+  // images[c] is camera c's frame at t, or nullopt when the camera has none in this set.
+  FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images);
+
+  const BallTracker& tracker() const { return tracker_; }
+
+ private:
+  std::optional<Measurement> Associate(const std::vector<std::vector<Detection>>& candidates,
+                                       const std::optional<Eigen::Vector3d>& predicted,
+                                       std::vector<std::pair<int, int>>* used) const;
+  std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
+                                        const std::optional<Eigen::Vector3d>& predicted,
+                                        std::vector<std::pair<int, int>>* used) const;
+
+  Rig rig_;
+  segment::ColorLut lut_;
+  FrameSetOptions options_;
+  std::vector<segment::BlobFinder> finders_;
+  std::vector<segment::Region> regions_;
+  BallTracker tracker_;
+};
+
+}  // namespace p4::track
