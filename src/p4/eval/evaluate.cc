@@ -9,7 +9,7 @@ namespace p4 {
 
 std::string EvalReport::ToJson() const {
   nlohmann::ordered_json j;
-  const auto round = [](double x, double unit) { return std::round(x / unit) * unit; };
+  const auto round = [](double x, double unit) { return std::round(x / unit) / std::round(1.0 / unit); };
   j["frames"] = frames;
   j["frames_in_play"] = frames_in_play;
   j["frames_seen"] = frames_seen;

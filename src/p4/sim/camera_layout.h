@@ -8,8 +8,9 @@
 
 namespace p4::sim {
 
-// Cameras in this order: side (y < 0), behind A (high), behind B (high), other side, then the
-// four corners. n in [1, 8]; focal length 0.78 * width (about 65 degrees across); optional
+// Cameras in this order: side (y < 0); high behind A, off to the y < 0 side; high behind B, off
+// to the y > 0 side (so the player at that end does not hide the ball); other side; then the four
+// corners. n in [1, 8]; focal length 0.78 * width (about 65 degrees across); optional
 // moderate barrel distortion (k1 = -0.08, k2 = 0.02) as webcams have.
 Rig ClubRig(int n, int width, int height, bool distortion);
 

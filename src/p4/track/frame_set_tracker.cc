@@ -7,6 +7,7 @@
 #include "p4/geometry/epipolar.h"
 #include "p4/geometry/sphere_depth.h"
 #include "p4/geometry/triangulation.h"
+#include "p4/segment/ball_measure.h"
 
 namespace p4::track {
 
@@ -73,13 +74,21 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     }
     for (int k = 0; k < std::min(found, options_.candidates_per_camera); ++k) {
       const segment::Region& r = regions_[k];
-      candidates[c].push_back({c, {r.cx, r.cy}, r.minor_diameter, r.area, false});
+      Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
+      if (options_.refine) {
+        // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
+        // differently in each camera, which the epipolar check does not forgive.
+        if (const auto m = segment::MeasureBall(*images[c], r)) d.diameter_px = m->minor_diameter;
+      }
+      candidates[c].push_back(d);
     }
   }
 
   std::vector<std::pair<int, int>> used;
   result.measurement = Associate(candidates, predicted, &used);
-  if (!result.measurement && options_.single_camera_fallback) {
+  // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
+  // to continue a track (a lone view of an orange speck must not start one).
+  if (!result.measurement && options_.single_camera_fallback && (n == 1 || predicted)) {
     result.measurement = SingleView(candidates, predicted, &used);
   }
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
@@ -146,10 +155,9 @@ std::optional<Measurement> FrameSetTracker::Associate(
           if (estimate->mean_reprojection_px > options_.reprojection_px) continue;
           h.estimate = *estimate;
           for (const auto& [c, m] : h.members) h.area += candidates[c][m].area_px;
-          if (predicted) {
-            h.prediction_distance = (estimate->point - *predicted).norm();
-            if (h.prediction_distance > options_.max_prediction_distance) continue;
-          }
+          // Distance to the prediction ranks hypotheses of as many views; it never rejects one
+          // (a wrong track must not hide the ball: the filter's gate and restarts judge).
+          if (predicted) h.prediction_distance = (estimate->point - *predicted).norm();
           if (!best || better(h, *best)) best = h;
         }
       }
@@ -184,9 +192,10 @@ std::optional<Measurement> FrameSetTracker::SingleView(
     const Camera& camera = rig_.cameras[c];
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px + options_.diameter_bias_px,
-                                               table::kBallRadius);
+      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px, table::kBallRadius);
       if (!sphere) continue;
+      const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
+      if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0) continue;
       // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
       double score = -static_cast<double>(d.area_px);
       if (predicted) {
@@ -195,13 +204,22 @@ std::optional<Measurement> FrameSetTracker::SingleView(
       }
       if (best && score >= best_score) continue;
       Measurement m;
-      m.position = sphere->point;
       m.cameras = 1;
       const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
-      const double along = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+      const Eigen::Matrix3d across_ray = Eigen::Matrix3d::Identity() - ray * ray.transpose();
       const double across = sphere->distance * options_.pixel_sigma / camera.fx;
-      m.covariance = along * along * ray * ray.transpose() +
-                     across * across * (Eigen::Matrix3d::Identity() - ray * ray.transpose());
+      if (predicted) {
+        // Continuing a track: the view fixes the ball's direction; its depth along the ray comes
+        // from the filter's prediction, which beats the diameter's (paper §3.2: "error-prone").
+        const double depth = std::max(0.1, (*predicted - camera.Center()).dot(ray));
+        m.position = camera.Center() + depth * ray;
+        const double along = options_.single_view_depth_sigma;
+        m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
+      } else {
+        m.position = sphere->point;
+        const double along = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+        m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
+      }
       best = m;
       best_score = score;
       best_id = {c, k};

@@ -34,7 +34,9 @@ struct FrameSetOptions {
   double pixel_sigma = 0.5;      // centroid noise, px (for measurement covariances)
   double diameter_sigma = 0.8;   // diameter noise, px
   double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
+  bool refine = true;              // the diameter from luma coverage (MeasureBall)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
+  double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
   TrackerOptions tracker;
 
   bool IsValid(std::string* error) const;
@@ -44,7 +46,7 @@ struct FrameSetOptions {
 struct Detection {
   int camera = 0;
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // region centroid
-  double diameter_px = 0.0;                         // minor diameter (blur-proof)
+  double diameter_px = 0.0;                         // the ball's diameter (blur-proof minor axis)
   int area_px = 0;
   bool accepted = false;  // part of this time-stamp's measurement
 };
