@@ -9,6 +9,7 @@
 #include "p4/eval/evaluate.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/run_files.h"
+#include "p4/io/truth_files.h"
 
 namespace p4::app {
 namespace {
@@ -22,7 +23,8 @@ int Run(const EvalArgs& a) {
   const Rig rig = ReadRig((fs::path(a.truth) / "rig.yaml").string());
   const auto truth = ReadTruthCsv((fs::path(a.truth) / "truth.csv").string());
   const auto run = ReadTrajectoryCsv((fs::path(a.run) / "trajectory.csv").string());
-  const EvalReport report = Evaluate(truth, run, rig);
+  const auto visibility = ReadVisibilityCsv((fs::path(a.truth) / "truth_visibility.csv").string(), rig);
+  const EvalReport report = Evaluate(truth, run, rig, visibility);
   const std::string json = report.ToJson();
   std::cout << json << std::endl;
   if (!a.out.empty()) {

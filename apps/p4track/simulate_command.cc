@@ -139,6 +139,7 @@ int Run(const SimulateArgs& a) {
   std::atomic<int64_t> done{0};
   std::atomic<int> next_camera{0};
   std::vector<std::string> errors(rig.size());
+  std::vector<std::vector<float>> visibility(rig.size(), std::vector<float>(frames, 0.0f));
   const auto work = [&]() {
     for (int c = next_camera++; c < rig.size(); c = next_camera++) {
       try {
@@ -153,7 +154,8 @@ int Run(const SimulateArgs& a) {
         I420Image image(width, height);
         for (int64_t k = 0; k < frames; ++k) {
           const double t = static_cast<double>(k) / a.fps;
-          renderer.Render(sim::ContentAt(trajectory, t, exposure), k, &image);
+          visibility[c][k] = static_cast<float>(
+              renderer.Render(sim::ContentAt(trajectory, t, exposure), k, &image));
           writer.Write(image);
           ++done;
         }
@@ -180,6 +182,7 @@ int Run(const SimulateArgs& a) {
   for (const auto& e : errors) {
     if (!e.empty()) throw Error(e);
   }
+  WriteVisibilityCsv(file("truth_visibility.csv"), rig, visibility, a.fps);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spdlog::info(

@@ -25,7 +25,8 @@ std::string EvalReport::ToJson() const {
 }
 
 EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,
-                    const Rig& rig, const EvalOptions& options) {
+                    const Rig& rig, const std::vector<std::vector<float>>& visibility,
+                    const EvalOptions& options) {
   EvalReport report;
   report.frames = static_cast<int>(truth.size());
   report.rows = static_cast<int>(run.size());
@@ -63,20 +64,21 @@ EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<Trajec
     has_measurement[t - truth.data()] = 1;
   }
   const int views_needed = std::min(options.min_views, rig.size());
+  const auto views = [&](std::size_t i) {
+    int count = 0;
+    for (int c = 0; c < rig.size(); ++c) {
+      count += i < visibility.size() ? visibility[i][c] >= options.min_visible
+                                     : rig.cameras[c].Sees(truth[i].position, 2.0);
+    }
+    return count;
+  };
+  int recalled = 0;
   for (std::size_t i = 0; i < truth.size(); ++i) {
     if (!truth[i].in_play) continue;
     ++report.frames_in_play;
-    int views = 0;
-    for (const Camera& c : rig.cameras) views += c.Sees(truth[i].position, 2.0);
-    if (views < views_needed) continue;
+    if (views(i) < views_needed) continue;
     ++report.frames_seen;
-  }
-  int recalled = 0;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    if (!truth[i].in_play || !has_measurement[i]) continue;
-    int views = 0;
-    for (const Camera& c : rig.cameras) views += c.Sees(truth[i].position, 2.0);
-    if (views >= views_needed) ++recalled;
+    recalled += has_measurement[i];
   }
   if (!measured_errors.empty()) {
     double sum = 0.0;

@@ -13,12 +13,13 @@ namespace p4 {
 struct EvalOptions {
   double false_positive_mm = 50.0;  // a measured row farther than this from the truth is false
   int min_views = 2;                // recall counts frames seen by this many cameras (or all)
+  double min_visible = 0.5;         // with visibility truth: a camera sees the ball from this share
 };
 
 struct EvalReport {
   int frames = 0;                    // truth rows
   int frames_in_play = 0;
-  int frames_seen = 0;               // in play and inside >= min_views cameras' images
+  int frames_seen = 0;               // in play and seen by >= min_views cameras
   int measured_rows = 0;
   int rows = 0;
   double position_rmse_mm = 0.0;     // measured rows (true positives)
@@ -31,7 +32,10 @@ struct EvalReport {
   std::string ToJson() const;
 };
 
+// `visibility` (per truth row and camera, the share of the ball seen; may be empty) decides which
+// cameras see the ball; without it, a camera sees the ball when it projects inside the image.
 EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,
-                    const Rig& rig, const EvalOptions& options = {});
+                    const Rig& rig, const std::vector<std::vector<float>>& visibility,
+                    const EvalOptions& options = {});
 
 }  // namespace p4

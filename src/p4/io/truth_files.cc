@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <sstream>
 #include <opencv2/core.hpp>
 
 #include "p4/core/error.h"
@@ -80,6 +81,52 @@ void WriteJson(const std::string& path, const nlohmann::json& json) {
   std::ofstream out = OpenOut(path);
   out << json.dump(2) << '\n';
   if (!out) throw Error(path + ": write failed");
+}
+
+void WriteVisibilityCsv(const std::string& path, const Rig& rig,
+                        const std::vector<std::vector<float>>& visibility, int fps) {
+  std::ofstream out = OpenOut(path);
+  out << "t";
+  for (const auto& c : rig.cameras) out << ',' << c.name;
+  out << '\n';
+  const std::size_t frames = visibility.empty() ? 0 : visibility[0].size();
+  for (std::size_t k = 0; k < frames; ++k) {
+    out << fmt::format("{:.6f}", static_cast<double>(k) / fps);
+    for (const auto& camera : visibility) out << fmt::format(",{:.3f}", camera[k]);
+    out << '\n';
+  }
+  if (!out) throw Error(path + ": write failed");
+}
+
+std::vector<std::vector<float>> ReadVisibilityCsv(const std::string& path, const Rig& rig) {
+  std::ifstream in(path);
+  if (!in) return {};
+  std::string line;
+  std::getline(in, line);
+  std::string expected = "t";
+  for (const auto& c : rig.cameras) expected += "," + c.name;
+  if (line != expected) throw Error(path + ": line 1: expected '" + expected + "'");
+  std::vector<std::vector<float>> rows;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    std::stringstream s(line);
+    std::string cell;
+    std::getline(s, cell, ',');
+    std::vector<float> row;
+    while (std::getline(s, cell, ',')) {
+      try {
+        row.push_back(std::stof(cell));
+      } catch (const std::exception&) {
+        throw Error(fmt::format("{}: line {}: '{}' is not a number", path, number, cell));
+      }
+    }
+    if (static_cast<int>(row.size()) != rig.size()) {
+      throw Error(fmt::format("{}: line {}: expected {} cameras", path, number, rig.size()));
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 void WriteMarkerLayout(const std::string& path, const std::vector<sim::MarkerQuad>& markers,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "p4/game/match_score.h"
+#include "p4/geometry/rig.h"
 #include "p4/sim/match.h"
 #include "p4/sim/scene.h"
 
@@ -23,6 +24,13 @@ void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent
 
 nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played);
 void WriteJson(const std::string& path, const nlohmann::json& json);
+
+// truth_visibility.csv: t and, per camera (named by the rig), the share of the ball that camera
+// sees in that frame (0: not in the picture or hidden; 1: fully seen).
+void WriteVisibilityCsv(const std::string& path, const Rig& rig,
+                        const std::vector<std::vector<float>>& visibility, int fps);
+// Returns per frame and camera the share seen; empty when the file does not exist.
+std::vector<std::vector<float>> ReadVisibilityCsv(const std::string& path, const Rig& rig);
 
 // markers.yaml: the dictionary name and, per marker, its id and 4 world corners (4x3, OpenCV
 // corner order), as `p4track calibrate rig` reads it.

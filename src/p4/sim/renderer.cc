@@ -406,7 +406,8 @@ CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) 
   return all;
 }
 
-CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
+CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, double* visible) {
+  *visible = 0.0;
   if (content.ball.empty()) return {};
   const double radius = table::kBallRadius;
   std::vector<Eigen::Vector3d> centres;  // camera frame
@@ -429,6 +430,7 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
   const int samples_t = static_cast<int>(centres.size());
   const int samples = std::max(options_.ball_min_samples, samples_t);
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
+  int64_t sphere_hits = 0, shown_hits = 0;
   for (int v = r.y0; v < r.y1; ++v) {
     for (int u = r.x0; u < r.x1; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
@@ -447,7 +449,10 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
         const double disc = dc * dc - dd * (c.squaredNorm() - radius * radius);
         if (disc < 0.0) continue;
         const double t = (dc - std::sqrt(disc)) / dd;
-        if (t <= 0.0 || t >= depth) continue;
+        if (t <= 0.0) continue;
+        ++sphere_hits;
+        if (t >= depth) continue;
+        ++shown_hits;
         const Eigen::Vector3d normal = (t * d - c) / radius;
         const Eigen::Vector3d view = -(t * d).normalized();
         const Eigen::Vector3d reflect = 2.0 * normal.dot(light) * normal - light;
@@ -469,6 +474,10 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content) {
     }
   }
   dirty_.push_back(r);
+  const auto centre = camera_.Project(content.ball[content.ball.size() / 2]);
+  if (sphere_hits > 0 && centre && camera_.InImage(*centre)) {
+    *visible = static_cast<double>(shown_hits) / static_cast<double>(sphere_hits);
+  }
   return r;
 }
 
@@ -490,15 +499,17 @@ void CameraRenderer::AddNoise(uint64_t frame_index, I420Image* out) const {
   add(out->v(), noise_chroma_.data() + offset_v, chroma);
 }
 
-void CameraRenderer::Render(const FrameContent& content, uint64_t frame_index, I420Image* out) {
+double CameraRenderer::Render(const FrameContent& content, uint64_t frame_index, I420Image* out) {
   if (out->width() != w_ || out->height() != h_) *out = I420Image(w_, h_);
   for (const Rect& r : dirty_) RestoreWork(r);
   dirty_.clear();
   RenderPlayers(content);
-  RenderBall(content);
+  double visible = 0.0;
+  RenderBall(content, &visible);
   std::memcpy(out->bytes().data(), static_i420_.bytes().data(), out->bytes().size());
   for (const Rect& r : dirty_) WriteRect(r, out);
   AddNoise(frame_index, out);
+  return visible;
 }
 
 }  // namespace p4::sim

@@ -34,7 +34,9 @@ class CameraRenderer {
   // Renders the static background at once (the expensive part; ~1 s at 1280x720).
   CameraRenderer(const Camera& camera, const SceneOptions& scene, const RenderOptions& options);
 
-  void Render(const FrameContent& content, uint64_t frame_index, I420Image* out);
+  // Renders one frame. Returns how much of the ball this camera sees: the share of the ball's
+  // image (inside the picture) not hidden by players or the scene, in [0, 1]; 0 without a ball.
+  double Render(const FrameContent& content, uint64_t frame_index, I420Image* out);
 
   const Camera& camera() const { return camera_; }
 
@@ -50,7 +52,7 @@ class CameraRenderer {
   void WriteRect(const Rect& r, I420Image* out) const;
   Rect ClipEven(double x0, double y0, double x1, double y1) const;
   Rect RenderPlayers(const FrameContent& content);
-  Rect RenderBall(const FrameContent& content);
+  Rect RenderBall(const FrameContent& content, double* visible);
   void AddNoise(uint64_t frame_index, I420Image* out) const;
 
   Camera camera_;

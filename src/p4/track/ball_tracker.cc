@@ -148,11 +148,18 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
   return out;
 }
 
-std::optional<Eigen::Vector3d> BallTracker::PredictPosition(TimeNs t) const {
+std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> BallTracker::Predict(TimeNs t) const {
   if (!tracking_) return std::nullopt;
   KalmanFilter copy = filter_;
   PredictWithBounce(&copy, ToSeconds(t - last_t_), options_);
-  return copy.state().head<3>();
+  return std::make_pair(Eigen::Vector3d(copy.state().head<3>()),
+                        Eigen::Matrix3d(copy.covariance().topLeftCorner<3, 3>()));
+}
+
+std::optional<Eigen::Vector3d> BallTracker::PredictPosition(TimeNs t) const {
+  const auto p = Predict(t);
+  if (!p) return std::nullopt;
+  return p->first;
 }
 
 }  // namespace p4::track

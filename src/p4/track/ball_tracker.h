@@ -58,6 +58,8 @@ class BallTracker {
 
   // Where the filter expects the ball at t (> last time-stamp), without changing the track.
   std::optional<Eigen::Vector3d> PredictPosition(TimeNs t) const;
+  // The same with the position's covariance (m^2).
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> Predict(TimeNs t) const;
 
   bool tracking() const { return tracking_; }
   int restarts() const { return restarts_; }

@@ -48,7 +48,11 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   result.t = t;
   const int n = rig_.size();
   result.searches.resize(n);
-  const std::optional<Eigen::Vector3d> predicted = tracker_.PredictPosition(t);
+  const auto prediction = tracker_.Predict(t);
+  const std::optional<Eigen::Vector3d> predicted =
+      prediction ? std::optional<Eigen::Vector3d>(prediction->first) : std::nullopt;
+  const Eigen::Matrix3d predicted_covariance =
+      prediction ? prediction->second : Eigen::Matrix3d::Identity();
   std::vector<std::vector<Detection>> candidates(n);
   for (int c = 0; c < n && c < static_cast<int>(images.size()); ++c) {
     if (!images[c]) continue;
@@ -89,7 +93,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
   // to continue a track (a lone view of an orange speck must not start one).
   if (!result.measurement && options_.single_camera_fallback && (n == 1 || predicted)) {
-    result.measurement = SingleView(candidates, predicted, &used);
+    result.measurement = SingleView(candidates, predicted, predicted_covariance, &used);
   }
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {
@@ -184,7 +188,8 @@ std::optional<Measurement> FrameSetTracker::Associate(
 
 std::optional<Measurement> FrameSetTracker::SingleView(
     const std::vector<std::vector<Detection>>& candidates,
-    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
+    const std::optional<Eigen::Vector3d>& predicted, const Eigen::Matrix3d& predicted_covariance,
+    std::vector<std::pair<int, int>>* used) const {
   std::optional<Measurement> best;
   double best_score = 0.0;
   std::pair<int, int> best_id;
@@ -208,6 +213,10 @@ std::optional<Measurement> FrameSetTracker::SingleView(
       const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
       const Eigen::Matrix3d across_ray = Eigen::Matrix3d::Identity() - ray * ray.transpose();
       const double across = sphere->distance * options_.pixel_sigma / camera.fx;
+      if (predicted && rig_.size() > 1 &&
+          std::sqrt(ray.dot(predicted_covariance * ray)) > options_.single_view_max_depth_sigma) {
+        continue;
+      }
       if (predicted) {
         // Continuing a track: the view fixes the ball's direction; its depth along the ray comes
         // from the filter's prediction, which beats the diameter's (paper §3.2: "error-prone").

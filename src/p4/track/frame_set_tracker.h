@@ -37,6 +37,9 @@ struct FrameSetOptions {
   bool refine = true;              // the diameter from luma coverage (MeasureBall)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
+  // In a rig of several cameras a lone view continues a track only while the filter knows the
+  // depth along its ray to this (m): beyond it the row would be a guess, not a measurement.
+  double single_view_max_depth_sigma = 0.02;
   TrackerOptions tracker;
 
   bool IsValid(std::string* error) const;
@@ -82,6 +85,7 @@ class FrameSetTracker {
                                        std::vector<std::pair<int, int>>* used) const;
   std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
                                         const std::optional<Eigen::Vector3d>& predicted,
+                                        const Eigen::Matrix3d& predicted_covariance,
                                         std::vector<std::pair<int, int>>* used) const;
 
   Rig rig_;
