@@ -72,6 +72,7 @@ void BallTracker::Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& v
   filter_.Reset(x, p);
   tracking_ = true;
   last_t_ = last_update_t_ = t;
+  last_position_ = m.position;
   pending_.reset();
 }
 
@@ -117,11 +118,23 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
       if (filter_.Mahalanobis2(m->position, m->covariance) <= options_.gate_chi2) {
         filter_.Update(m->position, m->covariance);
         last_update_t_ = t;
+        last_position_ = filter_.state().head<3>();
         pending_.reset();
         used = true;
       } else {
-        // Refused: restart from it when the previous refused one agrees with it (a hit).
-        if (pending_ && t - pending_->first < FromSeconds(0.05)) {
+        // Refused: a sound multi-camera measurement restarts the track at once (a hit), with the
+        // velocity from where the ball was; a lesser one waits for a second that agrees with it.
+        if (m->cameras >= 2 && m->residual_px <= options_.sound_residual_px) {
+          const double gap = ToSeconds(t - last_update_t_);
+          const Eigen::Vector3d v = gap > 0 ? Eigen::Vector3d((m->position - last_position_) / gap)
+                                            : Eigen::Vector3d::Zero();
+          if (v.norm() <= options_.max_speed) {
+            Start(t, *m, v, 2.0 * options_.init_velocity_sigma);
+            ++restarts_;
+            used = true;
+          }
+        }
+        if (!used && pending_ && t - pending_->first < FromSeconds(0.05)) {
           const double gap = ToSeconds(t - pending_->first);
           const Eigen::Vector3d v = (m->position - pending_->second.position) / gap;
           if (v.norm() <= options_.max_speed) {

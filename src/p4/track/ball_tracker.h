@@ -45,6 +45,7 @@ struct TrackerOptions {
   double bounce_friction = 0.25;
   double ball_radius = 0.02;
   double init_velocity_sigma = 3.0;  // m/s, of a velocity from two measurements
+  double sound_residual_px = 2.0;    // a multi-camera measurement this consistent may restart
 
   bool IsValid(std::string* error) const;
 };
@@ -75,6 +76,7 @@ class BallTracker {
   bool tracking_ = false;
   TimeNs last_t_ = 0;
   TimeNs last_update_t_ = 0;
+  Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
   std::optional<std::pair<TimeNs, Measurement>> pending_;  // a measurement the gate refused
   int restarts_ = 0;
 };
