@@ -23,7 +23,8 @@ int Run(const EvalArgs& a) {
   const Rig rig = ReadRig((fs::path(a.truth) / "rig.yaml").string());
   const auto truth = ReadTruthCsv((fs::path(a.truth) / "truth.csv").string());
   const auto run = ReadTrajectoryCsv((fs::path(a.run) / "trajectory.csv").string());
-  const auto visibility = ReadVisibilityCsv((fs::path(a.truth) / "truth_visibility.csv").string(), rig);
+  const auto visibility =
+      ReadVisibilityCsv((fs::path(a.truth) / "truth_visibility.csv").string(), rig);
   const EvalReport report = Evaluate(truth, run, rig, visibility);
   const std::string json = report.ToJson();
   std::cout << json << std::endl;
@@ -38,11 +39,14 @@ int Run(const EvalArgs& a) {
 
 std::function<int()> AddEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
-  CLI::App* cmd = app.add_subcommand("eval", "Accuracy of a tracking run against simulated truth (JSON)");
+  CLI::App* cmd =
+      app.add_subcommand("eval", "Accuracy of a tracking run against simulated truth (JSON)");
   cmd->add_option("--truth", args->truth, "Folder written by `p4track simulate`")
-      ->required()->check(CLI::ExistingDirectory);
+      ->required()
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--run", args->run, "Folder written by `p4track track`")
-      ->required()->check(CLI::ExistingDirectory);
+      ->required()
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--out", args->out, "Also write the JSON to this file");
   return [args]() { return Run(*args); };
 }

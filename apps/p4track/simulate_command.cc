@@ -1,5 +1,6 @@
 // p4track simulate: renders simulated (or real, --trajectory) table-tennis play from N cameras,
 // with exact ground truth (DESIGN.md "Files").
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -38,7 +39,7 @@ struct SimulateArgs {
   bool no_players = false;
   bool distortion = false;
   double noise = 2.0;
-  double exposure_ms = -1.0;
+  double exposure_ms = 2.0;
   int best_of = 5;
   std::string first_server = "A";
   double gap = 1.0;
@@ -66,8 +67,11 @@ int Run(const SimulateArgs& a) {
   int width = 0, height = 0;
   ParseSize(a.size, &width, &height);
   if (a.fps < 1 || a.fps > 1000) throw Error("--fps: must be in [1, 1000]");
-  const double exposure = a.exposure_ms >= 0.0 ? a.exposure_ms / 1000.0 : 0.5 / a.fps;
-  if (exposure > 1.0 / a.fps) throw Error("--exposure-ms: longer than a frame");
+  const double exposure = a.exposure_ms / 1000.0;
+  if (!(exposure >= 0.0) || exposure > 1.0 / a.fps) {
+    throw Error(fmt::format("--exposure-ms: must be between 0 and a frame ({:.2f} ms), got {}",
+                            1000.0 / a.fps, a.exposure_ms));
+  }
   const VideoCodec codec = a.codec == "ffv1" ? VideoCodec::kFFV1 : VideoCodec::kH264;
 
   namespace fs = std::filesystem;
@@ -227,7 +231,9 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--noise", args->noise, "Sensor noise, 8-bit levels (sigma)")
       ->check(CLI::Range(0.0, 20.0))
       ->capture_default_str();
-  cmd->add_option("--exposure-ms", args->exposure_ms, "Exposure (default: half a frame)");
+  cmd->add_option("--exposure-ms", args->exposure_ms,
+                  "Exposure time (a sports setting; webcams on auto may use 8 ms or more)")
+      ->capture_default_str();
   cmd->add_option("--best-of", args->best_of, "Games in the match (odd)")->capture_default_str();
   cmd->add_option("--first-server", args->first_server, "A or B")
       ->check(CLI::IsMember({"A", "B"}))

@@ -1,14 +1,14 @@
 // p4track track: the tracker over recorded or live sources (paper §3), writing the run's files.
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
 #include <memory>
-
-#include <spdlog/spdlog.h>
 
 #include "commands.h"
 #include "p4/core/error.h"
 #include "p4/io/color_class_file.h"
-#include "p4/io/video_reader.h"
 #include "p4/io/rig_file.h"
+#include "p4/io/video_reader.h"
 #include "p4/pipeline/track_run.h"
 
 namespace p4::app {
@@ -25,8 +25,9 @@ struct TrackArgs {
 int Run(const TrackArgs& a) {
   const Rig rig = ReadRig(a.rig);
   const segment::ColorClassSet classes =
-      !a.classes.empty() ? ReadColorClasses(a.classes)
-                         : (a.ball == "white" ? segment::DefaultWhiteBall() : segment::DefaultOrangeBall());
+      !a.classes.empty()
+          ? ReadColorClasses(a.classes)
+          : (a.ball == "white" ? segment::DefaultWhiteBall() : segment::DefaultOrangeBall());
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
@@ -38,9 +39,9 @@ int Run(const TrackArgs& a) {
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   spdlog::info("tracking {} source(s) with {} ({} camera(s)) into {}", a.sources.size(), a.rig,
                rig.size(), a.out);
-  const TrackRunSummary summary = RunTracking(rig, classes, a.sources, a.out, options, [](int64_t n) {
-    spdlog::info("tracking: {} frame sets", n);
-  });
+  const TrackRunSummary summary =
+      RunTracking(rig, classes, a.sources, a.out, options,
+                  [](int64_t n) { spdlog::info("tracking: {} frame sets", n); });
   spdlog::info("{}", summary.Report());
   return 0;
 }
@@ -49,25 +50,31 @@ int Run(const TrackArgs& a) {
 
 std::function<int()> AddTrackCommand(CLI::App& app) {
   auto args = std::make_shared<TrackArgs>();
-  CLI::App* cmd = app.add_subcommand("track", "Track the ball in 3D from video files, cameras or streams");
+  CLI::App* cmd =
+      app.add_subcommand("track", "Track the ball in 3D from video files, cameras or streams");
   cmd->add_option("--rig", args->rig, "Rig file (rig.yaml) of the cameras, in the sources' order")
-      ->required()->check(CLI::ExistingFile);
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Output folder (trajectory.csv, detections.csv)")->required();
   cmd->add_option("sources", args->sources, "One per camera: video file, /dev/videoN, rtsp://...")
       ->required();
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
       ->check(CLI::ExistingFile);
   cmd->add_option("--ball", args->ball, "Ball colour when no --classes")
-      ->check(CLI::IsMember({"orange", "white"}))->capture_default_str();
+      ->check(CLI::IsMember({"orange", "white"}))
+      ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");
   cmd->add_option("--stride", args->stride, "Test every N-th pixel of a row")
-      ->check(CLI::Range(1, 4))->capture_default_str();
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
   cmd->add_option("--filter", args->filter, "p4 (drag-aware) or paper (the paper's Q and R)")
-      ->check(CLI::IsMember({"p4", "paper"}))->capture_default_str();
+      ->check(CLI::IsMember({"p4", "paper"}))
+      ->capture_default_str();
   cmd->add_flag("--no-single-camera", args->no_single_camera,
                 "Never place the ball from one camera by its diameter");
   cmd->add_option("--epipolar-px", args->epipolar_px, "Epipolar distance bound, pixels")
-      ->check(CLI::Range(0.5, 100.0))->capture_default_str();
+      ->check(CLI::Range(0.5, 100.0))
+      ->capture_default_str();
   return [args]() { return Run(*args); };
 }
 

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 namespace p4 {
 
 std::string EvalReport::ToJson() const {
   nlohmann::ordered_json j;
-  const auto round = [](double x, double unit) { return std::round(x / unit) / std::round(1.0 / unit); };
+  const auto round = [](double x, double unit) {
+    return std::round(x / unit) / std::round(1.0 / unit);
+  };
   j["frames"] = frames;
   j["frames_in_play"] = frames_in_play;
   j["frames_seen"] = frames_seen;
@@ -31,14 +32,17 @@ EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<Trajec
   report.frames = static_cast<int>(truth.size());
   report.rows = static_cast<int>(run.size());
   if (truth.empty()) return report;
-  const double period = truth.size() > 1 ? (truth.back().t - truth.front().t) / (truth.size() - 1) : 1.0;
+  const double period =
+      truth.size() > 1 ? (truth.back().t - truth.front().t) / (truth.size() - 1) : 1.0;
   const auto match = [&](double t) -> const TruthRow* {
     const auto it = std::lower_bound(truth.begin(), truth.end(), t,
                                      [](const TruthRow& r, double value) { return r.t < value; });
     const TruthRow* best = nullptr;
     for (auto c : {it, it == truth.begin() ? it : it - 1}) {
       if (c == truth.end()) continue;
-      if (std::abs(c->t - t) <= 0.5 * period && (!best || std::abs(c->t - t) < std::abs(best->t - t))) best = &*c;
+      if (std::abs(c->t - t) <= 0.5 * period &&
+          (!best || std::abs(c->t - t) < std::abs(best->t - t)))
+        best = &*c;
     }
     return best;
   };

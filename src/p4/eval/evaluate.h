@@ -17,17 +17,17 @@ struct EvalOptions {
 };
 
 struct EvalReport {
-  int frames = 0;                    // truth rows
+  int frames = 0;  // truth rows
   int frames_in_play = 0;
-  int frames_seen = 0;               // in play and seen by >= min_views cameras
+  int frames_seen = 0;  // in play and seen by >= min_views cameras
   int measured_rows = 0;
   int rows = 0;
-  double position_rmse_mm = 0.0;     // measured rows (true positives)
+  double position_rmse_mm = 0.0;  // measured rows (true positives)
   double position_median_mm = 0.0;
   double position_p95_mm = 0.0;
-  double position_rmse_all_mm = 0.0; // every row while the ball is in play
-  double recall = 0.0;               // frames_seen with a measured row
-  double false_positive_rate = 0.0;  // measured rows far from the truth or with no ball
+  double position_rmse_all_mm = 0.0;  // every row while the ball is in play
+  double recall = 0.0;                // frames_seen with a measured row
+  double false_positive_rate = 0.0;   // measured rows far from the truth or with no ball
 
   std::string ToJson() const;
 };

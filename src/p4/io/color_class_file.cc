@@ -1,8 +1,8 @@
 #include "p4/io/color_class_file.h"
 
-#include <filesystem>
-
 #include <fmt/format.h>
+
+#include <filesystem>
 #include <opencv2/core.hpp>
 
 #include "p4/core/error.h"
@@ -14,7 +14,8 @@ segment::ColorClassSet ReadColorClasses(const std::string& path) {
   if (std::filesystem::file_size(path) == 0) throw Error(path + ": the file is empty");
   cv::FileStorage fs;
   try {
-    if (!fs.open(path, cv::FileStorage::READ)) throw Error(path + ": cannot open or parse the file");
+    if (!fs.open(path, cv::FileStorage::READ))
+      throw Error(path + ": cannot open or parse the file");
   } catch (const cv::Exception& e) {
     throw Error(path + ": cannot parse the file (" + e.msg + ")");
   }
@@ -29,13 +30,15 @@ segment::ColorClassSet ReadColorClasses(const std::string& path) {
     }
     segment::ColorClass c;
     c.name = static_cast<std::string>(node["name"]);
-    for (const auto& [key, range] : {std::pair{"y", &c.y}, std::pair{"u", &c.u}, std::pair{"v", &c.v}}) {
+    for (const auto& [key, range] :
+         {std::pair{"y", &c.y}, std::pair{"u", &c.u}, std::pair{"v", &c.v}}) {
       const cv::FileNode bounds = node[key];
       if (bounds.empty() || !bounds.isSeq() || bounds.size() != 2) {
         throw Error(fmt::format("{} '{}': '{}' must be [low, high]", where, c.name, key));
       }
       for (int k = 0; k < 2; ++k) {
-        if (!bounds[k].isInt()) throw Error(fmt::format("{} '{}': {}: not an integer", where, c.name, key));
+        if (!bounds[k].isInt())
+          throw Error(fmt::format("{} '{}': {}: not an integer", where, c.name, key));
         const int value = static_cast<int>(bounds[k]);
         if (value < 0 || value > 255) {
           throw Error(fmt::format("{} '{}': {}: {} is outside 0-255", where, c.name, key, value));
@@ -54,12 +57,18 @@ segment::ColorClassSet ReadColorClasses(const std::string& path) {
 void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path) {
   cv::FileStorage fs(path, cv::FileStorage::WRITE);
   if (!fs.isOpened()) throw Error(path + ": cannot create the file");
-  fs << "classes" << "[";
+  fs << "classes"
+     << "[";
   for (const auto& c : classes.classes) {
-    fs << "{" << "name" << c.name;
-    fs << "y" << "[" << c.y[0] << c.y[1] << "]";
-    fs << "u" << "[" << c.u[0] << c.u[1] << "]";
-    fs << "v" << "[" << c.v[0] << c.v[1] << "]" << "}";
+    fs << "{"
+       << "name" << c.name;
+    fs << "y"
+       << "[" << c.y[0] << c.y[1] << "]";
+    fs << "u"
+       << "[" << c.u[0] << c.u[1] << "]";
+    fs << "v"
+       << "[" << c.v[0] << c.v[1] << "]"
+       << "}";
   }
   fs << "]";
 }

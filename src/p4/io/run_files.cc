@@ -1,9 +1,9 @@
 #include "p4/io/run_files.h"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "p4/core/error.h"
 
@@ -26,7 +26,8 @@ void RunWriter::Write(const track::FrameSetResult& result) {
   const double t = ToSeconds(result.t);
   for (const auto& d : result.detections) {
     detections_ << fmt::format("{:.6f},{},{:.3f},{:.3f},{:.2f},{},{}\n", t, camera_names_[d.camera],
-                               d.pixel.x(), d.pixel.y(), d.diameter_px, d.area_px, d.accepted ? 1 : 0);
+                               d.pixel.x(), d.pixel.y(), d.diameter_px, d.area_px,
+                               d.accepted ? 1 : 0);
   }
   if (result.state) {
     const auto& s = *result.state;
@@ -101,7 +102,8 @@ std::vector<TruthRow> ReadTruthCsv(const std::string& path) {
     TruthRow row;
     row.t = Number(path, i, r[0]);
     row.in_play = r[10] == "1";
-    if (row.in_play) row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
+    if (row.in_play)
+      row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
     out.push_back(row);
   }
   return out;

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <fstream>
-#include <sstream>
 #include <opencv2/core.hpp>
+#include <sstream>
 
 #include "p4/core/error.h"
 

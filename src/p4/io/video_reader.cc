@@ -94,9 +94,11 @@ bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
     int ret = avcodec_receive_frame(m.codec, m.frame);
     if (ret == 0) {
       const AVRational tb = m.format->streams[m.stream]->time_base;
-      const int64_t ts = m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
+      const int64_t ts =
+          m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
       const int64_t start = m.format->streams[m.stream]->start_time;
-      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb, AVRational{1, 1'000'000'000});
+      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb,
+                          AVRational{1, 1'000'000'000});
       const int w = m.frame->width, h = m.frame->height;
       view->width = w;
       view->height = h;
@@ -126,8 +128,9 @@ bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
           if (m.converted.width() != w || m.converted.height() != h) m.converted = I420Image(w, h);
           uint8_t* dst[3] = {m.converted.y(), m.converted.u(), m.converted.v()};
           const int dst_stride[3] = {w, w / 2, w / 2};
-          m.sws = sws_getCachedContext(m.sws, w, h, static_cast<AVPixelFormat>(m.frame->format), w, h,
-                                       AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr, nullptr);
+          m.sws =
+              sws_getCachedContext(m.sws, w, h, static_cast<AVPixelFormat>(m.frame->format), w, h,
+                                   AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr, nullptr);
           sws_scale(m.sws, m.frame->data, m.frame->linesize, 0, h, dst, dst_stride);
           *view = m.converted.View();
           return true;
@@ -147,7 +150,8 @@ bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
     if (m.packet->stream_index == m.stream) {
       ret = avcodec_send_packet(m.codec, m.packet);
       av_packet_unref(m.packet);
-      if (ret < 0 && ret != AVERROR(EAGAIN)) throw Error(m.source + ": decoding failed: " + AvError(ret));
+      if (ret < 0 && ret != AVERROR(EAGAIN))
+        throw Error(m.source + ": decoding failed: " + AvError(ret));
     } else {
       av_packet_unref(m.packet);
     }
@@ -157,7 +161,8 @@ bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
 bool VideoReader::Read(I420Image* out, TimeNs* pts) {
   ImageView view;
   if (!ReadView(&view, pts)) return false;
-  if (out->width() != view.width || out->height() != view.height) *out = I420Image(view.width, view.height);
+  if (out->width() != view.width || out->height() != view.height)
+    *out = I420Image(view.width, view.height);
   const int w = view.width, h = view.height;
   for (int r = 0; r < h; ++r) {
     for (int x = 0; x < w; ++x) {

@@ -1,9 +1,9 @@
 #include "p4/pipeline/track_run.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "p4/core/error.h"
 #include "p4/io/run_files.h"

@@ -18,12 +18,15 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
                                        const BallMeasureOptions& options) {
   if (region.touches_border) return std::nullopt;
   const int grow = options.margin_px + (region.x1 - region.x0 + region.y1 - region.y0) / 8;
-  const int x0 = region.x0 - grow, y0 = region.y0 - grow, x1 = region.x1 + grow, y1 = region.y1 + grow;
+  const int x0 = region.x0 - grow, y0 = region.y0 - grow, x1 = region.x1 + grow,
+            y1 = region.y1 + grow;
   if (x0 < 0 || y0 < 0 || x1 > image.width || y1 > image.height) return std::nullopt;
   // Background: median luma of the window's border ring.
   std::vector<uint8_t> ring;
-  for (int x = x0; x < x1; ++x) ring.push_back(Luma(image, x, y0)), ring.push_back(Luma(image, x, y1 - 1));
-  for (int y = y0 + 1; y < y1 - 1; ++y) ring.push_back(Luma(image, x0, y)), ring.push_back(Luma(image, x1 - 1, y));
+  for (int x = x0; x < x1; ++x)
+    ring.push_back(Luma(image, x, y0)), ring.push_back(Luma(image, x, y1 - 1));
+  for (int y = y0 + 1; y < y1 - 1; ++y)
+    ring.push_back(Luma(image, x0, y)), ring.push_back(Luma(image, x1 - 1, y));
   std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
   const double background = ring[ring.size() / 2];
   // The background's own spread (sensor noise, texture), robustly: 1.4826 x median |deviation|.
@@ -33,11 +36,13 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
   const double floor = std::max(2.0, 2.5 * 1.4826 * deviation[deviation.size() / 2]);
   // Ball level: the 75th percentile of the luma difference inside the region's box, taken on the
   // side (brighter or darker) where the region's centre lies.
-  const int cx = static_cast<int>(std::lround(region.cx)), cy = static_cast<int>(std::lround(region.cy));
+  const int cx = static_cast<int>(std::lround(region.cx)),
+            cy = static_cast<int>(std::lround(region.cy));
   const double sign = Luma(image, cx, cy) >= background ? 1.0 : -1.0;
   std::vector<double> inside;
   for (int y = region.y0; y < region.y1; ++y) {
-    for (int x = region.x0; x < region.x1; ++x) inside.push_back(sign * (Luma(image, x, y) - background));
+    for (int x = region.x0; x < region.x1; ++x)
+      inside.push_back(sign * (Luma(image, x, y) - background));
   }
   std::nth_element(inside.begin(), inside.begin() + inside.size() * 3 / 4, inside.end());
   const double contrast = inside[inside.size() * 3 / 4];
@@ -46,8 +51,8 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       // Differences within the background's noise count as background.
-      const double a =
-          std::clamp((sign * (Luma(image, x, y) - background) - floor) / (contrast - floor), 0.0, 1.0);
+      const double a = std::clamp(
+          (sign * (Luma(image, x, y) - background) - floor) / (contrast - floor), 0.0, 1.0);
       if (a <= 0.0) continue;
       sw += a, sx += a * x, sy += a * y, sxx += a * x * x, syy += a * y * y, sxy += a * x * y;
     }

@@ -14,15 +14,15 @@
 namespace p4::segment {
 
 struct BallMeasure {
-  double cx = 0.0, cy = 0.0;     // alpha-weighted centroid, pixels
-  double diameter = 0.0;         // 2 sqrt(sum alpha / pi)
-  double minor_diameter = 0.0;   // 4 sqrt(smallest eigenvalue of the weighted covariance)
-  double contrast = 0.0;         // ball luma minus background luma (8-bit levels)
+  double cx = 0.0, cy = 0.0;    // alpha-weighted centroid, pixels
+  double diameter = 0.0;        // 2 sqrt(sum alpha / pi)
+  double minor_diameter = 0.0;  // 4 sqrt(smallest eigenvalue of the weighted covariance)
+  double contrast = 0.0;        // ball luma minus background luma (8-bit levels)
 };
 
 struct BallMeasureOptions {
-  int margin_px = 3;          // window = region box grown by this (and by a quarter of its size)
-  double min_contrast = 18.0; // below it the luma says too little: no measure
+  int margin_px = 3;           // window = region box grown by this (and by a quarter of its size)
+  double min_contrast = 18.0;  // below it the luma says too little: no measure
 };
 
 // nullopt when the region touches the image border or the contrast is too low.

@@ -1,9 +1,9 @@
 #include "p4/segment/ball_measure.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "p4/segment/test_images.h"
 
@@ -24,15 +24,17 @@ TEST(MeasureBall, DiameterAndCentreOnTwoBackgrounds) {
   for (const testing::Yuv background : {testing::kTableBlue, testing::Yuv{65.0, 115.0, 150.0}}) {
     for (const double r : {3.5, 5.0, 8.0}) {
       const double cx = 40.37, cy = 30.81;
-      I420Image img = Paint(96, 64, [&](double x, double y) { return Disc(x, y, cx, cy, r); },
-                            testing::kOrange, background);
+      I420Image img = Paint(
+          96, 64, [&](double x, double y) { return Disc(x, y, cx, cy, r); }, testing::kOrange,
+          background);
       // Sensor noise (sigma 2) and faint floor boards (4 levels) on the luma.
       std::mt19937 rng(static_cast<unsigned>(r * 10));
       std::normal_distribution<double> noise(0.0, 2.0);
       for (int y = 0; y < 64; ++y) {
         for (int x = 0; x < 96; ++x) {
           const double board = (y / 6) % 2 ? 4.0 : 0.0;
-          img.y()[y * 96 + x] = static_cast<uint8_t>(std::clamp(img.y()[y * 96 + x] + noise(rng) + board, 0.0, 255.0));
+          img.y()[y * 96 + x] = static_cast<uint8_t>(
+              std::clamp(img.y()[y * 96 + x] + noise(rng) + board, 0.0, 255.0));
         }
       }
       ASSERT_EQ(finder.Find(img.View(), lut, {}, options, &regions), 1);
@@ -54,12 +56,14 @@ TEST(MeasureBall, NoMeasureAtTheBorderOrWithoutContrast) {
   options.mask = set.MaskOf("ball");
   BlobFinder finder;
   std::vector<Region> regions;
-  const I420Image edge = Paint(64, 48, [](double x, double y) { return Disc(x, y, 2.0, 20.0, 5.0); });
+  const I420Image edge =
+      Paint(64, 48, [](double x, double y) { return Disc(x, y, 2.0, 20.0, 5.0); });
   ASSERT_EQ(finder.Find(edge.View(), lut, {}, options, &regions), 1);
   EXPECT_FALSE(MeasureBall(edge.View(), regions[0]).has_value());
   // Same luma as the background: only chroma tells them apart.
-  const I420Image flat = Paint(64, 48, [](double x, double y) { return Disc(x, y, 30.0, 20.0, 5.0); },
-                               testing::kOrange, testing::Yuv{137.0, 128.0, 128.0});
+  const I420Image flat = Paint(
+      64, 48, [](double x, double y) { return Disc(x, y, 30.0, 20.0, 5.0); }, testing::kOrange,
+      testing::Yuv{137.0, 128.0, 128.0});
   ASSERT_EQ(finder.Find(flat.View(), lut, {}, options, &regions), 1);
   EXPECT_FALSE(MeasureBall(flat.View(), regions[0]).has_value());
 }

@@ -77,7 +77,7 @@ class BallTracker {
   TimeNs last_t_ = 0;
   TimeNs last_update_t_ = 0;
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
-  std::optional<std::pair<TimeNs, Measurement>> pending_;  // a measurement the gate refused
+  std::optional<std::pair<TimeNs, Measurement>> pending_;    // a measurement the gate refused
   int restarts_ = 0;
 };
 

@@ -43,7 +43,8 @@ double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
 
 }  // namespace
 
-FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<ImageView>> images) {
+FrameSetResult FrameSetTracker::Process(TimeNs t,
+                                        std::span<const std::optional<ImageView>> images) {
   FrameSetResult result;
   result.t = t;
   const int n = rig_.size();
@@ -63,9 +64,10 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       const auto px = camera.Project(*predicted);
       if (px) {
         const double d = ExpectedDiameterPx(camera, *predicted);
-        const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)), options_.roi_min_px,
-                                    options_.roi_max_px);
-        search.roi = segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
+        const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)),
+                                    options_.roi_min_px, options_.roi_max_px);
+        search.roi =
+            segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
       }
     }
     int found = 0;
@@ -200,7 +202,8 @@ std::optional<Measurement> FrameSetTracker::SingleView(
       const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px, table::kBallRadius);
       if (!sphere) continue;
       const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
-      if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0) continue;
+      if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0)
+        continue;
       // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
       double score = -static_cast<double>(d.area_px);
       if (predicted) {
@@ -217,7 +220,7 @@ std::optional<Measurement> FrameSetTracker::SingleView(
           std::sqrt(ray.dot(predicted_covariance * ray)) > options_.single_view_max_depth_sigma) {
         continue;
       }
-      if (predicted) {
+      if (predicted && rig_.size() > 1) {
         // Continuing a track: the view fixes the ball's direction; its depth along the ray comes
         // from the filter's prediction, which beats the diameter's (paper §3.2: "error-prone").
         const double depth = std::max(0.1, (*predicted - camera.Center()).dot(ray));
@@ -226,7 +229,8 @@ std::optional<Measurement> FrameSetTracker::SingleView(
         m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
       } else {
         m.position = sphere->point;
-        const double along = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+        const double along =
+            sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
         m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
       }
       best = m;

@@ -28,13 +28,13 @@ struct FrameSetOptions {
   double epipolar_px = 4.0;      // max distance of a candidate from another view's epipolar line
   double reprojection_px = 5.0;  // max reprojection error of an agreeing view
   bool use_roi = true;
-  int roi_min_px = 40;           // the paper's fixed 40 px window...
-  int roi_max_px = 240;          // ...grown with the predicted ball size and speed
+  int roi_min_px = 40;   // the paper's fixed 40 px window...
+  int roi_max_px = 240;  // ...grown with the predicted ball size and speed
   bool single_camera_fallback = true;
-  double pixel_sigma = 0.5;      // centroid noise, px (for measurement covariances)
-  double diameter_sigma = 0.8;   // diameter noise, px
-  double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
-  bool refine = true;              // the diameter from luma coverage (MeasureBall)
+  double pixel_sigma = 0.5;              // centroid noise, px (for measurement covariances)
+  double diameter_sigma = 0.8;           // diameter noise, px
+  double diameter_bias_px = 0.65;        // the binary region is this much narrower than the ball
+  bool refine = true;                    // the diameter from luma coverage (MeasureBall)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
   // In a rig of several cameras a lone view continues a track only while the filter knows the

@@ -1,0 +1,139 @@
+// End-to-end: simulate a short match (the simulator's defaults: 2 cameras, 1280x720, 120 fps,
+// orange ball, H.264), track it from the videos, evaluate against the truth; and the errors a
+// user meets with bad input.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs p4track; returns its exit code and what it printed (stdout and stderr).
+int P4track(const std::string& args, std::string* output = nullptr) {
+  const fs::path log = fs::temp_directory_path() / ("p4track_log_" + std::to_string(::getpid()));
+  const std::string command =
+      std::string(P4TRACK_EXE) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  if (output) *output = Slurp(log);
+  fs::remove(log);
+  return WEXITSTATUS(status);
+}
+
+class TrackCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / ("p4_track_e2e_" + std::to_string(::getpid())));
+    sim_ = *dir_ / "sim";
+    run_ = *dir_ / "run";
+    ASSERT_EQ(P4track("simulate --out " + sim_.string() + " --points 2 --seed 22 --max-duration 8"),
+              0);
+    ASSERT_EQ(P4track("track --rig " + (sim_ / "rig.yaml").string() + " --out " + run_.string() +
+                      " " + (sim_ / "cam0.mp4").string() + " " + (sim_ / "cam1.mp4").string()),
+              0);
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static fs::path* dir_;
+  static fs::path sim_, run_;
+};
+fs::path* TrackCommand::dir_ = nullptr;
+fs::path TrackCommand::sim_;
+fs::path TrackCommand::run_;
+
+TEST_F(TrackCommand, MeetsTheAccuracyTargets) {
+  std::string out;
+  ASSERT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run_.string(), &out), 0) << out;
+  const auto report = nlohmann::json::parse(out);
+  std::printf("%s\n", report.dump().c_str());
+  EXPECT_GT(report["frames_seen"].get<int>(), 500);
+  EXPECT_LE(report["position_rmse_mm"].get<double>(), 5.0);
+  EXPECT_GE(report["recall"].get<double>(), 0.99);
+  EXPECT_LE(report["false_positive_rate"].get<double>(), 0.005);
+  EXPECT_LE(report["position_rmse_all_mm"].get<double>(), 100.0);
+}
+
+TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
+  std::ifstream trajectory(run_ / "trajectory.csv");
+  std::string line;
+  std::getline(trajectory, line);
+  EXPECT_EQ(line, "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
+  int rows = 0, measured = 0;
+  while (std::getline(trajectory, line)) {
+    ++rows;
+    measured += line.find(",1,2,") != std::string::npos;
+  }
+  EXPECT_GT(rows, 500);
+  EXPECT_GT(measured, 400);
+  std::ifstream detections(run_ / "detections.csv");
+  std::getline(detections, line);
+  EXPECT_EQ(line, "t,camera,u,v,diameter_px,area_px,accepted");
+  std::getline(detections, line);
+  EXPECT_TRUE(line.find(",cam0,") != std::string::npos || line.find(",cam1,") != std::string::npos)
+      << line;
+}
+
+TEST_F(TrackCommand, BadInputGetsAClearMessage) {
+  const std::string rig = (sim_ / "rig.yaml").string();
+  const std::string cam0 = (sim_ / "cam0.mp4").string();
+  const std::string out = (*dir_ / "bad").string();
+  std::string msg;
+  // A missing video.
+  EXPECT_NE(
+      P4track("track --rig " + rig + " --out " + out + " " + cam0 + " /nonexistent/cam1.mp4", &msg),
+      0);
+  EXPECT_NE(msg.find("/nonexistent/cam1.mp4"), std::string::npos) << msg;
+  // An unreadable video (not a video at all).
+  const fs::path junk = *dir_ / "junk.mp4";
+  std::ofstream(junk) << "not a video";
+  EXPECT_NE(
+      P4track("track --rig " + rig + " --out " + out + " " + cam0 + " " + junk.string(), &msg), 0);
+  EXPECT_NE(msg.find("junk.mp4"), std::string::npos) << msg;
+  // Camera count.
+  EXPECT_NE(P4track("track --rig " + rig + " --out " + out + " " + cam0, &msg), 0);
+  EXPECT_NE(msg.find("2 camera(s) but 1 source(s)"), std::string::npos) << msg;
+  // Image size.
+  const fs::path small = *dir_ / "small";
+  ASSERT_EQ(
+      P4track("simulate --out " + small.string() + " --size 320x180 --points 1 --max-duration 0.1"),
+      0);
+  EXPECT_NE(P4track("track --rig " + rig + " --out " + out + " " + cam0 + " " +
+                        (small / "cam1.mp4").string(),
+                    &msg),
+            0);
+  EXPECT_NE(msg.find("320x180"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("1280x720"), std::string::npos) << msg;
+  // Empty and corrupt colour-class files.
+  const fs::path empty = *dir_ / "empty.yaml";
+  std::ofstream(empty).flush();
+  EXPECT_NE(P4track("track --rig " + rig + " --out " + out + " --classes " + empty.string() + " " +
+                        cam0 + " " + cam0,
+                    &msg),
+            0);
+  EXPECT_NE(msg.find("empty.yaml: the file is empty"), std::string::npos) << msg;
+  const fs::path corrupt = *dir_ / "corrupt.yaml";
+  std::ofstream(corrupt)
+      << "%YAML:1.0\n---\nclasses:\n  - { name: ball_a, y: [10, 300], u: [0, 255], v: [0, 255] }\n";
+  EXPECT_NE(P4track("track --rig " + rig + " --out " + out + " --classes " + corrupt.string() +
+                        " " + cam0 + " " + cam0,
+                    &msg),
+            0);
+  EXPECT_NE(msg.find("corrupt.yaml: classes[0] 'ball_a': y: 300 is outside 0-255"),
+            std::string::npos)
+      << msg;
+}
+
+}  // namespace
