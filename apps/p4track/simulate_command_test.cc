@@ -147,7 +147,8 @@ TEST_F(SimulateCommand, ProjectedTruthLandsOnTheRenderedBall) {
       const auto px = camera.Project(row.p);
       const auto before = camera.Project(truth[k - 1].p), after = camera.Project(truth[k + 1].p);
       if (!px || !before || !after || !camera.InImage(*px, 16.0)) continue;
-      if ((*after - *before).norm() > 8.0) continue;  // blur over the exposure < 2 px
+      // Blur over the 2 ms exposure (1/16 of the two frames between before and after) < 2 px.
+      if ((*after - *before).norm() > 30.0) continue;
       const int cx = static_cast<int>(std::lround(px->x())),
                 cy = static_cast<int>(std::lround(px->y()));
       const int half = 8;
