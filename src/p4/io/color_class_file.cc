@@ -6,21 +6,13 @@
 #include <opencv2/core.hpp>
 
 #include "p4/core/error.h"
+#include "p4/io/file_storage.h"
 
 namespace p4 {
 
 segment::ColorClassSet ReadColorClasses(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
-  if (std::filesystem::file_size(path) == 0) throw Error(path + ": the file is empty");
   cv::FileStorage fs;
-  try {
-    if (!fs.open(path, cv::FileStorage::READ))
-      throw Error(path + ": cannot open or parse the file");
-  } catch (const cv::Exception& e) {
-    throw Error(path + ": cannot parse the file (" + e.msg + ")");
-  }
-  const cv::FileNode list = fs["classes"];
-  if (list.empty() || !list.isSeq()) throw Error(path + ": missing 'classes' list");
+  const cv::FileNode list = OpenList(path, "classes", &fs);
   segment::ColorClassSet set;
   int index = 0;
   for (const auto& node : list) {

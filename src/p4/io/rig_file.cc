@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "p4/core/error.h"
+#include "p4/io/file_storage.h"
 
 namespace p4 {
 namespace {
@@ -120,16 +121,8 @@ cv::Mat ToMat(const double* data, int rows, int cols) {
 }  // namespace
 
 Rig ReadRig(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
   cv::FileStorage fs;
-  try {
-    if (!fs.open(path, cv::FileStorage::READ))
-      throw Error(path + ": cannot open or parse the file");
-  } catch (const cv::Exception& e) {
-    throw Error(path + ": cannot parse the file (" + e.msg + ")");
-  }
-  const cv::FileNode cameras = fs["cameras"];
-  if (cameras.empty() || !cameras.isSeq()) throw Error(path + ": missing 'cameras' list");
+  const cv::FileNode cameras = OpenList(path, "cameras", &fs);
   Rig rig;
   int index = 0;
   for (const auto& node : cameras) {

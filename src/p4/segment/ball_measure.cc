@@ -66,9 +66,7 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
   const double cxx = sxx / sw - m.cx * m.cx + 1.0 / 12.0;
   const double cyy = syy / sw - m.cy * m.cy + 1.0 / 12.0;
   const double cxy = sxy / sw - m.cx * m.cy;
-  const double mean = 0.5 * (cxx + cyy);
-  const double spread = std::sqrt(std::max(0.0, 0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy));
-  m.minor_diameter = 4.0 * std::sqrt(std::max(0.0, mean - spread));
+  m.minor_diameter = DiametersFromMoments(cxx, cyy, cxy).minor;
   return m;
 }
 

@@ -20,6 +20,13 @@ Roi Roi::Clipped(int image_width, int image_height) const {
   return r;
 }
 
+MomentDiameters DiametersFromMoments(double cxx, double cyy, double cxy) {
+  const double mean = 0.5 * (cxx + cyy);
+  const double spread = std::sqrt(std::max(0.0, 0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy));
+  return {4.0 * std::sqrt(std::max(0.0, mean - spread)),
+          4.0 * std::sqrt(std::max(0.0, mean + spread))};
+}
+
 bool SegmentOptions::IsValid(std::string* error) const {
   if (stride < 1 || stride > 4) {
     if (error) *error = "stride must be in [1, 4]";
@@ -194,10 +201,9 @@ int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi
     const double cxx = a.sxx / area - region.cx * region.cx + 1.0 / 12.0;
     const double cyy = a.syy / area - region.cy * region.cy + 1.0 / 12.0;
     const double cxy = a.sxy / area - region.cx * region.cy;
-    const double mean = 0.5 * (cxx + cyy);
-    const double spread = std::sqrt(std::max(0.0, 0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy));
-    region.minor_diameter = 4.0 * std::sqrt(std::max(0.0, mean - spread));
-    region.major_diameter = 4.0 * std::sqrt(std::max(0.0, mean + spread));
+    const MomentDiameters d = DiametersFromMoments(cxx, cyy, cxy);
+    region.minor_diameter = d.minor;
+    region.major_diameter = d.major;
     region.touches_border = a.x0 == 0 || a.y0 == 0 || a.x1 == image.width || a.y1 == image.height;
     regions->push_back(region);
   }

@@ -45,6 +45,13 @@ struct Region {
   bool touches_border = false;  // the region reaches the image edge (may be cut)
 };
 
+// Diameters of a region from its second moments (pixel variances cxx, cyy and covariance cxy):
+// a uniform disc of diameter D has variance D^2 / 16 along every axis, so D = 4 sqrt(lambda).
+struct MomentDiameters {
+  double minor = 0.0, major = 0.0;
+};
+MomentDiameters DiametersFromMoments(double cxx, double cyy, double cxy);
+
 struct SegmentOptions {
   uint32_t mask = 0xffffffffu;  // classes that count as the object
   int stride = 1;               // test every stride-th pixel of a row (1-4)
