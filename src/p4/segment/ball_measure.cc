@@ -31,6 +31,7 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
   const double background = ring[ring.size() / 2];
   // The background's own spread (sensor noise, texture), robustly: 1.4826 x median |deviation|.
   std::vector<double> deviation;
+  deviation.reserve(ring.size());
   for (uint8_t v : ring) deviation.push_back(std::abs(v - background));
   std::nth_element(deviation.begin(), deviation.begin() + deviation.size() / 2, deviation.end());
   const double floor = std::max(2.0, 2.5 * 1.4826 * deviation[deviation.size() / 2]);
