@@ -11,6 +11,7 @@ packages=(
   libavformat-dev libavcodec-dev libavdevice-dev libavutil-dev libswscale-dev ffmpeg
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  rtsp-server-perl  # a real RTSP server for the network-camera test
 )
 
 missing=()

@@ -42,6 +42,7 @@ int Run(const TrackArgs& a) {
   const TrackRunSummary summary =
       RunTracking(rig, classes, a.sources, a.out, options,
                   [](int64_t n) { spdlog::info("tracking: {} frame sets", n); });
+  for (const auto& e : summary.sources_ended_with_error) spdlog::warn("source ended: {}", e);
   spdlog::info("{}", summary.Report());
   return 0;
 }

@@ -63,6 +63,17 @@ VideoReader::VideoReader(const std::string& source) : impl_(std::make_unique<Imp
   }
   int ret = avformat_open_input(&m.format, source.c_str(), input_format, &options);
   av_dict_free(&options);
+  if (ret < 0 && source.rfind("rtsp://", 0) == 0) {
+    // RTP over the RTSP connection (TCP) is refused by some servers: try RTP over UDP.
+    const std::string tcp_error = AvError(ret);
+    av_dict_set(&options, "rtsp_transport", "udp", 0);
+    av_dict_set(&options, "timeout", "5000000", 0);
+    ret = avformat_open_input(&m.format, source.c_str(), nullptr, &options);
+    av_dict_free(&options);
+    if (ret < 0) {
+      throw Error(source + ": cannot open: " + tcp_error + " (TCP), " + AvError(ret) + " (UDP)");
+    }
+  }
   if (ret < 0) throw Error(source + ": cannot open: " + AvError(ret));
   ret = avformat_find_stream_info(m.format, nullptr);
   if (ret < 0) throw Error(source + ": cannot read stream info: " + AvError(ret));

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <memory>
+#include <thread>
 
 #include "p4/core/error.h"
 #include "p4/io/video_reader.h"
@@ -62,6 +65,114 @@ TEST(Video, MissingFileIsNamed) {
   odd.width = 63;
   odd.height = 48;
   EXPECT_THROW(VideoWriter("/tmp/p4_odd.mp4", odd), Error);
+}
+
+}  // namespace
+}  // namespace p4
+
+namespace p4 {
+namespace {
+
+// A real network stream: ffmpeg serves an H.264 MPEG-TS over TCP on localhost and the reader
+// connects as a client, as it would to a network camera's stream.
+TEST(Video, ReadsANetworkStreamOverTcp) {
+  const std::string path = (fs::temp_directory_path() / "p4_stream_source.ts").string();
+  VideoWriterOptions options;
+  options.width = 160;
+  options.height = 120;
+  options.fps = 30;
+  {
+    VideoWriter writer(path, options);
+    for (int k = 0; k < 30; ++k) writer.Write(Pattern(160, 120, k));
+    writer.Close();
+  }
+  const int port = 20000 + ::getpid() % 20000;
+  const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
+  const std::string serve = "ffmpeg -v error -re -i " + path + " -c copy -f mpegts '" + url +
+                            "?listen=1&listen_timeout=10000' > /dev/null 2>&1 &";
+  ASSERT_EQ(std::system(serve.c_str()), 0);
+  std::unique_ptr<VideoReader> reader;
+  for (int attempt = 0; attempt < 50 && !reader; ++attempt) {
+    try {
+      reader = std::make_unique<VideoReader>(url);
+    } catch (const Error&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the server is starting
+    }
+  }
+  ASSERT_TRUE(reader) << "could not connect to " << url;
+  EXPECT_TRUE(VideoReader::IsLive(url));
+  EXPECT_EQ(reader->info().width, 160);
+  ImageView view;
+  TimeNs pts = 0, first = -1;
+  int frames = 0;
+  while (reader->ReadView(&view, &pts)) {
+    EXPECT_EQ(view.format, PixelFormat::kI420);
+    if (first < 0) first = pts;
+    ++frames;
+  }
+  EXPECT_GE(frames, 25);
+  EXPECT_NEAR(ToSeconds(pts - first), (frames - 1) / 30.0, 0.05);
+  fs::remove(path);
+}
+
+}  // namespace
+}  // namespace p4
+
+namespace p4 {
+namespace {
+
+// A real RTSP server (rtsp-server-perl, a relay like a camera's): ffmpeg publishes an H.264 clip
+// to it and the reader plays it as a client, the way it opens a network camera.
+TEST(Video, ReadsAnRtspStream) {
+  if (std::system("command -v rtsp-server-perl > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "rtsp-server-perl is not installed (scripts/setup.sh installs it)";
+  }
+  const std::string path = (fs::temp_directory_path() / "p4_rtsp_source.mp4").string();
+  VideoWriterOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.fps = 30;
+  {
+    VideoWriter writer(path, options);
+    for (int k = 0; k < 120; ++k) writer.Write(Pattern(320, 240, k));
+    writer.Close();
+  }
+  const int port = 30000 + (::getpid() % 10000) * 2;
+  const std::string pid_file = (fs::temp_directory_path() / "p4_rtsp_server.pid").string();
+  ASSERT_EQ(
+      std::system(("rtsp-server-perl -c " + std::to_string(port) + " -s " +
+                   std::to_string(port + 1) + " -l 0 > /dev/null 2>&1 & echo $! > " + pid_file)
+                      .c_str()),
+      0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  const std::string publish = "ffmpeg -v error -re -i " + path +
+                              " -c copy -f rtsp rtsp://127.0.0.1:" + std::to_string(port + 1) +
+                              "/p4 > /dev/null 2>&1 &";
+  ASSERT_EQ(std::system(publish.c_str()), 0);
+  const std::string url = "rtsp://127.0.0.1:" + std::to_string(port) + "/p4";
+  std::unique_ptr<VideoReader> reader;
+  for (int attempt = 0; attempt < 30 && !reader; ++attempt) {
+    try {
+      reader = std::make_unique<VideoReader>(url);
+    } catch (const Error&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  int frames = 0;
+  if (reader) {
+    EXPECT_EQ(reader->info().width, 320);
+    ImageView view;
+    TimeNs pts = 0;
+    try {
+      while (reader->ReadView(&view, &pts)) ++frames;
+    } catch (const Error&) {
+      // The publisher stopped: a live stream ends with a timeout.
+    }
+  }
+  std::system(("kill $(cat " + pid_file + ") > /dev/null 2>&1").c_str());
+  fs::remove(path);
+  ASSERT_TRUE(reader) << "could not play " << url;
+  EXPECT_GE(frames, 60);  // of 120: the client joins a moment after the publisher starts
 }
 
 }  // namespace

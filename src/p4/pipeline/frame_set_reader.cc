@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "p4/core/error.h"
+
 namespace p4 {
 
 FrameSetReader::FrameSetReader(const std::vector<std::string>& sources) {
@@ -17,7 +19,13 @@ FrameSetReader::FrameSetReader(const std::vector<std::string>& sources) {
 bool FrameSetReader::Next(FrameSet* set) {
   for (Source& s : sources_) {
     if (s.consumed && !s.ended) {
-      s.has_frame = s.reader->ReadView(&s.view, &s.pts);
+      try {
+        s.has_frame = s.reader->ReadView(&s.view, &s.pts);
+      } catch (const Error& e) {
+        if (!VideoReader::IsLive(s.name)) throw;  // a broken file is an error of the run
+        errors_.push_back(e.what());
+        s.has_frame = false;
+      }
       s.ended = !s.has_frame;
       s.consumed = false;
     }

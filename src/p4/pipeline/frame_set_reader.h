@@ -1,7 +1,8 @@
 // N video sources grouped into time-stamped frame sets (DESIGN.md "The loop"). A set takes the
 // earliest pending frame's time; each source contributes its frame when it lies within half a
 // frame period of it. A source that ends early, or lacks a frame, leaves its camera out of the
-// set; the run goes on until every source has ended.
+// set; the run goes on until every source has ended. A live source (device, stream) that fails
+// while reading ends there too, with its error kept in ended_with_error().
 #pragma once
 
 #include <memory>
@@ -29,6 +30,7 @@ class FrameSetReader {
   int size() const { return static_cast<int>(sources_.size()); }
   const VideoInfo& info(int i) const { return sources_[i].reader->info(); }
   const std::string& name(int i) const { return sources_[i].name; }
+  const std::vector<std::string>& ended_with_error() const { return errors_; }
 
  private:
   struct Source {
@@ -41,6 +43,7 @@ class FrameSetReader {
     bool ended = false;
   };
   std::vector<Source> sources_;
+  std::vector<std::string> errors_;
 };
 
 }  // namespace p4

@@ -74,6 +74,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       progress(summary.frame_sets);
     }
   }
+  summary.sources_ended_with_error = reader.ended_with_error();
   summary.video_seconds = first_t ? ToSeconds(last_t - *first_t) : 0.0;
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

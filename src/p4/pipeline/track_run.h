@@ -22,6 +22,7 @@ struct TrackRunSummary {
   int64_t roi_searches = 0;
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
+  std::vector<std::string> sources_ended_with_error;  // live sources that failed mid-run
   double measurements_per_second() const {
     return wall_seconds > 0 ? measured / wall_seconds : 0.0;
   }
