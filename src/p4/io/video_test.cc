@@ -27,6 +27,29 @@ I420Image Pattern(int w, int h, int k) {
   return image;
 }
 
+// Writes `frames` pattern frames to an H.264 file (or the container the extension names).
+void WriteClip(const std::string& path, int width, int height, int fps, int frames) {
+  VideoWriterOptions options;
+  options.width = width;
+  options.height = height;
+  options.fps = fps;
+  VideoWriter writer(path, options);
+  for (int k = 0; k < frames; ++k) writer.Write(Pattern(width, height, k));
+  writer.Close();
+}
+
+// Opens a live source, retrying while its server starts (about `seconds`).
+std::unique_ptr<VideoReader> Connect(const std::string& url, double seconds) {
+  for (int attempt = 0; attempt < static_cast<int>(seconds * 10); ++attempt) {
+    try {
+      return std::make_unique<VideoReader>(url);
+    } catch (const Error&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  return nullptr;
+}
+
 TEST(Video, LosslessRoundTripKeepsEveryByteAndTime) {
   const std::string path = (fs::temp_directory_path() / "p4_video_test.mkv").string();
   VideoWriterOptions options;
@@ -77,28 +100,13 @@ namespace {
 // connects as a client, as it would to a network camera's stream.
 TEST(Video, ReadsANetworkStreamOverTcp) {
   const std::string path = (fs::temp_directory_path() / "p4_stream_source.ts").string();
-  VideoWriterOptions options;
-  options.width = 160;
-  options.height = 120;
-  options.fps = 30;
-  {
-    VideoWriter writer(path, options);
-    for (int k = 0; k < 30; ++k) writer.Write(Pattern(160, 120, k));
-    writer.Close();
-  }
+  WriteClip(path, 160, 120, 30, 30);
   const int port = 20000 + ::getpid() % 20000;
   const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
   const std::string serve = "ffmpeg -v error -re -i " + path + " -c copy -f mpegts '" + url +
                             "?listen=1&listen_timeout=10000' > /dev/null 2>&1 &";
   ASSERT_EQ(std::system(serve.c_str()), 0);
-  std::unique_ptr<VideoReader> reader;
-  for (int attempt = 0; attempt < 50 && !reader; ++attempt) {
-    try {
-      reader = std::make_unique<VideoReader>(url);
-    } catch (const Error&) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the server is starting
-    }
-  }
+  const std::unique_ptr<VideoReader> reader = Connect(url, 5.0);
   ASSERT_TRUE(reader) << "could not connect to " << url;
   EXPECT_TRUE(VideoReader::IsLive(url));
   EXPECT_EQ(reader->info().width, 160);
@@ -128,15 +136,7 @@ TEST(Video, ReadsAnRtspStream) {
     GTEST_SKIP() << "rtsp-server-perl is not installed (scripts/setup.sh installs it)";
   }
   const std::string path = (fs::temp_directory_path() / "p4_rtsp_source.mp4").string();
-  VideoWriterOptions options;
-  options.width = 320;
-  options.height = 240;
-  options.fps = 30;
-  {
-    VideoWriter writer(path, options);
-    for (int k = 0; k < 120; ++k) writer.Write(Pattern(320, 240, k));
-    writer.Close();
-  }
+  WriteClip(path, 320, 240, 30, 120);
   const int port = 30000 + (::getpid() % 10000) * 2;
   const std::string pid_file = (fs::temp_directory_path() / "p4_rtsp_server.pid").string();
   ASSERT_EQ(
@@ -150,14 +150,7 @@ TEST(Video, ReadsAnRtspStream) {
                               "/p4 > /dev/null 2>&1 &";
   ASSERT_EQ(std::system(publish.c_str()), 0);
   const std::string url = "rtsp://127.0.0.1:" + std::to_string(port) + "/p4";
-  std::unique_ptr<VideoReader> reader;
-  for (int attempt = 0; attempt < 30 && !reader; ++attempt) {
-    try {
-      reader = std::make_unique<VideoReader>(url);
-    } catch (const Error&) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-  }
+  const std::unique_ptr<VideoReader> reader = Connect(url, 3.0);
   int frames = 0;
   if (reader) {
     EXPECT_EQ(reader->info().width, 320);

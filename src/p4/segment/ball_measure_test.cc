@@ -13,13 +13,19 @@ namespace {
 using testing::Disc;
 using testing::Paint;
 
-TEST(MeasureBall, DiameterAndCentreOnTwoBackgrounds) {
-  const ColorClassSet set = DefaultOrangeBall();
-  const ColorLut lut = set.BuildLut();
+class MeasureBall : public ::testing::Test {
+ protected:
+  MeasureBall() : set_(DefaultOrangeBall()), lut(set_.BuildLut()) {
+    options.mask = set_.MaskOf("ball");
+  }
+  ColorClassSet set_;
+  ColorLut lut;
   SegmentOptions options;
-  options.mask = set.MaskOf("ball");
   BlobFinder finder;
   std::vector<Region> regions;
+};
+
+TEST_F(MeasureBall, DiameterAndCentreOnTwoBackgrounds) {
   // On the blue table and on a red-brown floor (whose chroma is close to the ball's).
   for (const testing::Yuv background : {testing::kTableBlue, testing::Yuv{65.0, 115.0, 150.0}}) {
     for (const double r : {3.5, 5.0, 8.0}) {
@@ -38,7 +44,7 @@ TEST(MeasureBall, DiameterAndCentreOnTwoBackgrounds) {
         }
       }
       ASSERT_EQ(finder.Find(img.View(), lut, {}, options, &regions), 1);
-      const auto m = MeasureBall(img.View(), regions[0]);
+      const auto m = segment::MeasureBall(img.View(), regions[0]);
       ASSERT_TRUE(m.has_value());
       EXPECT_NEAR(m->diameter, 2 * r, 0.4) << r;
       EXPECT_NEAR(m->minor_diameter, 2 * r, 0.5) << r;
@@ -49,23 +55,17 @@ TEST(MeasureBall, DiameterAndCentreOnTwoBackgrounds) {
   }
 }
 
-TEST(MeasureBall, NoMeasureAtTheBorderOrWithoutContrast) {
-  const ColorClassSet set = DefaultOrangeBall();
-  const ColorLut lut = set.BuildLut();
-  SegmentOptions options;
-  options.mask = set.MaskOf("ball");
-  BlobFinder finder;
-  std::vector<Region> regions;
+TEST_F(MeasureBall, NoMeasureAtTheBorderOrWithoutContrast) {
   const I420Image edge =
       Paint(64, 48, [](double x, double y) { return Disc(x, y, 2.0, 20.0, 5.0); });
   ASSERT_EQ(finder.Find(edge.View(), lut, {}, options, &regions), 1);
-  EXPECT_FALSE(MeasureBall(edge.View(), regions[0]).has_value());
+  EXPECT_FALSE(segment::MeasureBall(edge.View(), regions[0]).has_value());
   // Same luma as the background: only chroma tells them apart.
   const I420Image flat = Paint(
       64, 48, [](double x, double y) { return Disc(x, y, 30.0, 20.0, 5.0); }, testing::kOrange,
       testing::Yuv{137.0, 128.0, 128.0});
   ASSERT_EQ(finder.Find(flat.View(), lut, {}, options, &regions), 1);
-  EXPECT_FALSE(MeasureBall(flat.View(), regions[0]).has_value());
+  EXPECT_FALSE(segment::MeasureBall(flat.View(), regions[0]).has_value());
 }
 
 }  // namespace
