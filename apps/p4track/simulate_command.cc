@@ -174,9 +174,9 @@ int Run(const SimulateArgs& a) {
   threads.reserve(workers);
   for (int i = 0; i < workers; ++i) threads.emplace_back(work);
   const int64_t total = frames * rig.size();
+  auto last = std::chrono::steady_clock::now();
   while (done < total) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    static auto last = std::chrono::steady_clock::now();
     if (std::chrono::steady_clock::now() - last > std::chrono::seconds(2)) {
       last = std::chrono::steady_clock::now();
       spdlog::info("rendering: {}/{} frames ({:.0f}%)", done.load(), total, 100.0 * done / total);

@@ -84,6 +84,22 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
       pending_.reset();
       return std::nullopt;
     }
+    if (options_.kalman.noise == KalmanOptions::Noise::kPaper) {
+      // The paper's start (§3.3): x0 = (0, 0, 0, 1, 1, 1), P0 = I, then the first correction.
+      filter_.ResetPaper();
+      filter_.Update(m->position, m->covariance);
+      tracking_ = true;
+      last_t_ = last_update_t_ = t;
+      last_position_ = filter_.state().head<3>();
+      pending_.reset();
+      ++restarts_;
+      out.measured = true;
+      out.cameras = m->cameras;
+      out.residual_px = m->residual_px;
+      out.position = filter_.state().head<3>();
+      out.velocity = filter_.state().tail<3>();
+      return out;
+    }
     // Start from two measurements close in time (their difference gives the velocity); the
     // first one is reported as it is.
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();

@@ -201,3 +201,25 @@ TEST(BallTracker, RealFlightsPredictionErrorAndBounce) {
 
 }  // namespace
 }  // namespace p4::track
+
+namespace p4::track {
+namespace {
+
+TEST(BallTracker, PaperModeStartsFromThePapersValues) {
+  TrackerOptions options;
+  options.kalman.noise = KalmanOptions::Noise::kPaper;
+  BallTracker tracker(options);
+  Measurement m;
+  m.position = {0.5, -0.2, 0.3};
+  m.cameras = 2;
+  const auto first = tracker.Step(0, m);
+  ASSERT_TRUE(first.has_value());
+  // P0 = I against R = 1.6e-3 I: the position moves almost all the way to the measurement; the
+  // velocity keeps the paper's (1, 1, 1) until later corrections.
+  EXPECT_LT((first->position - m.position).norm(), 0.002);
+  EXPECT_NEAR(first->velocity.x(), 1.0, 1e-9);
+  EXPECT_TRUE(tracker.tracking());
+}
+
+}  // namespace
+}  // namespace p4::track
