@@ -30,6 +30,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       lut_(classes.BuildLut()),
       options_(options),
       finders_(rig.cameras.size()),
+      static_spots_(rig.cameras.size()),
       tracker_(options.tracker) {
   options_.segment.mask = classes.MaskOf("ball");
 }
@@ -78,8 +79,16 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
       search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
       found = finders_[c].Find(*images[c], lut_, {}, options_.segment, &regions_);
     }
-    for (int k = 0; k < std::min(found, options_.candidates_per_camera); ++k) {
+    int kept = 0;
+    for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
       const segment::Region& r = regions_[k];
+      // A ball, even blurred, is a compact blob: not a wall, not a line.
+      if (r.area > options_.max_area_px ||
+          r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
+          IsStatic(c, {r.cx, r.cy})) {
+        continue;
+      }
+      ++kept;
       Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
       if (options_.refine) {
         // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
@@ -90,6 +99,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
     }
   }
 
+  for (int c = 0; c < n; ++c) AgeStaticSpots(c);
   std::vector<std::pair<int, int>> used;
   result.measurement = Associate(candidates, predicted, &used);
   // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
@@ -103,6 +113,27 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   }
   result.state = tracker_.Step(t, result.measurement);
   return result;
+}
+
+bool FrameSetTracker::IsStatic(int camera, const Eigen::Vector2d& pixel) {
+  for (StaticSpot& spot : static_spots_[camera]) {
+    if ((spot.pixel - pixel).norm() <= options_.static_px) {
+      if (!spot.seen) ++spot.count;
+      spot.seen = true;
+      return spot.count >= options_.static_frames;
+    }
+  }
+  static_spots_[camera].push_back({pixel, 1, true});
+  return false;
+}
+
+void FrameSetTracker::AgeStaticSpots(int camera) {
+  auto& spots = static_spots_[camera];
+  for (StaticSpot& spot : spots) {
+    if (!spot.seen) spot.count -= 3;  // gone for a moment: forgotten fast
+    spot.seen = false;
+  }
+  std::erase_if(spots, [](const StaticSpot& s) { return s.count <= 0; });
 }
 
 std::optional<Measurement> FrameSetTracker::Associate(

@@ -25,6 +25,12 @@ namespace p4::track {
 struct FrameSetOptions {
   segment::SegmentOptions segment;  // mask is set from the classes ("ball*")
   int candidates_per_camera = 4;
+  int max_area_px = 4000;       // larger regions are not the ball (walls, shirts, lines)
+  double max_elongation = 8.0;  // major / minor diameter: blur stretches a ball, a line more
+  // A region that stays within static_px of the same place for static_frames frame sets is part
+  // of the hall (a lamp, a white mark), not the ball in play.
+  double static_px = 1.5;
+  int static_frames = 30;
   double epipolar_px = 4.0;      // max distance of a candidate from another view's epipolar line
   double reprojection_px = 5.0;  // max reprojection error of an agreeing view
   bool use_roi = true;
@@ -91,7 +97,17 @@ class FrameSetTracker {
   Rig rig_;
   segment::ColorLut lut_;
   FrameSetOptions options_;
+  // Per camera, places where regions keep appearing, with how many sets in a row they did.
+  struct StaticSpot {
+    Eigen::Vector2d pixel;
+    int count = 0;
+    bool seen = false;
+  };
+  bool IsStatic(int camera, const Eigen::Vector2d& pixel);
+  void AgeStaticSpots(int camera);
+
   std::vector<segment::BlobFinder> finders_;
+  std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<segment::Region> regions_;
   BallTracker tracker_;
 };

@@ -119,6 +119,27 @@ TEST_F(FrameSetTrackerTest, RoiOutsideTheImageFallsBackToTheWholeImage) {
   EXPECT_LT((second.state->position - next).norm(), 0.01);
 }
 
+TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
+  // An orange mark that both cameras see at one place (so it passes the epipolar check) is taken
+  // for the ball at first, and dropped once it has not moved for static_frames sets.
+  FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
+  const Eigen::Vector3d mark(0.9, 0.5, 0.0);
+  int measured_early = 0, measured_late = 0;
+  for (int k = 0; k < 60; ++k) {
+    auto views = Frames(std::nullopt, k);
+    for (int c = 0; c < 2; ++c) {
+      const auto px = rig_.cameras[c].Project(mark);
+      ASSERT_TRUE(px.has_value());
+      PaintOrange(c, px->x(), px->y(), 4.0);
+    }
+    const auto result = tracker.Process(FromSeconds(k / 120.0), views);
+    if (k < 10) measured_early += result.measurement.has_value();
+    if (k >= 35) measured_late += result.measurement.has_value();
+  }
+  EXPECT_EQ(measured_early, 10);
+  EXPECT_EQ(measured_late, 0);
+}
+
 TEST_F(FrameSetTrackerTest, OneCameraRigPlacesTheBallByItsDiameter) {
   Rig one;
   one.cameras = {rig_.cameras[0]};
