@@ -12,23 +12,15 @@
 
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
+#include "p4track_test_support.h"
 
 namespace p4 {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-int RunP4track(const std::string& args) {
-  const std::string command = std::string(P4TRACK_EXE) + " " + args + " > /dev/null 2>&1";
-  return std::system(command.c_str());
-}
+using testing::P4track;
+using testing::Slurp;
 
 struct TruthRow {
   double t;
@@ -59,9 +51,9 @@ class SimulateCommand : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new fs::path(fs::temp_directory_path() / ("p4_sim_e2e_" + std::to_string(::getpid())));
     // Lossless, short (a serve and a few shots), with lens distortion.
-    ASSERT_EQ(RunP4track("simulate --out " + dir_->string() +
-                         " --cameras 2 --size 1280x720 --fps 60 --points 1 --seed 4 --codec ffv1"
-                         " --max-duration 3 --distortion"),
+    ASSERT_EQ(P4track("simulate --out " + dir_->string() +
+                      " --cameras 2 --size 1280x720 --fps 60 --points 1 --seed 4 --codec ffv1"
+                      " --max-duration 3 --distortion"),
               0);
     frames_ = new std::map<std::string, std::vector<I420Image>>();
     times_ = new std::map<std::string, std::vector<TimeNs>>();
@@ -185,8 +177,8 @@ TEST_F(SimulateCommand, ProjectedTruthLandsOnTheRenderedBall) {
 
 TEST_F(SimulateCommand, SameSeedSameTruthBytes) {
   const fs::path again = *dir_ / "again";
-  ASSERT_EQ(RunP4track("simulate --out " + again.string() +
-                       " --cameras 1 --size 320x180 --fps 60 --points 1 --seed 4 --max-duration 3"),
+  ASSERT_EQ(P4track("simulate --out " + again.string() +
+                    " --cameras 1 --size 320x180 --fps 60 --points 1 --seed 4 --max-duration 3"),
             0);
   for (const char* name : {"truth.csv", "truth_events.jsonl", "truth_score.json"}) {
     EXPECT_EQ(Slurp((*dir_ / name).string()), Slurp((again / name).string())) << name;
@@ -202,9 +194,9 @@ TEST_F(SimulateCommand, SameSeedSameTruthBytes) {
 }
 
 TEST_F(SimulateCommand, BadOptionsFailWithAMessage) {
-  EXPECT_NE(RunP4track("simulate --out /tmp/p4_bad --size 640by480"), 0);
-  EXPECT_NE(RunP4track("simulate --out /tmp/p4_bad --best-of 4"), 0);
-  EXPECT_NE(RunP4track("simulate"), 0);  // --out is required
+  EXPECT_NE(P4track("simulate --out /tmp/p4_bad --size 640by480"), 0);
+  EXPECT_NE(P4track("simulate --out /tmp/p4_bad --best-of 4"), 0);
+  EXPECT_NE(P4track("simulate"), 0);  // --out is required
 }
 
 }  // namespace

@@ -9,27 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "p4track_test_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs p4track; returns its exit code and what it printed (stdout and stderr).
-int P4track(const std::string& args, std::string* output = nullptr) {
-  const fs::path log = fs::temp_directory_path() / ("p4track_log_" + std::to_string(::getpid()));
-  const std::string command =
-      std::string(P4TRACK_EXE) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  if (output) *output = Slurp(log);
-  fs::remove(log);
-  return WEXITSTATUS(status);
-}
+using p4::testing::P4track;
+using p4::testing::Slurp;
 
 class TrackCommand : public ::testing::Test {
  protected:

@@ -1,0 +1,34 @@
+// Helpers of the end-to-end tests that run the p4track program (P4TRACK_EXE) itself.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace p4::testing {
+
+inline std::string Slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `p4track args`; returns its exit code and, if asked, what it printed (stdout + stderr).
+inline int P4track(const std::string& args, std::string* output = nullptr) {
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() / ("p4track_log_" + std::to_string(::getpid()));
+  const std::string command =
+      std::string(P4TRACK_EXE) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  if (output) *output = Slurp(log);
+  std::filesystem::remove(log);
+  return WEXITSTATUS(status);
+}
+
+}  // namespace p4::testing
