@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 
+#include "p4/track/flight_model.h"
+
 namespace p4::track {
 
 bool KalmanOptions::IsValid(std::string* error) const {
@@ -56,19 +58,8 @@ void KalmanFilter::Predict(double dt) {
   if (k == 0.0) {
     x_ = f * x_ + ControlTerm(dt);
   } else {
-    // Drag evaluated at the mid-step velocity (second order), and its Jacobian d a / d v.
-    const Eigen::Vector3d v0 = x_.tail<3>();
-    const Eigen::Vector3d g(0.0, 0.0, -options_.gravity);
-    const auto accel = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d {
-      return g - k * v.norm() * v;
-    };
-    const Eigen::Vector3d v_mid = v0 + 0.5 * dt * accel(v0);
-    const Eigen::Vector3d a = accel(v_mid);
-    x_.head<3>() += dt * v0 + 0.5 * dt * dt * a;
-    x_.tail<3>() += dt * a;
-    const double speed = v_mid.norm();
-    Eigen::Matrix3d jac = -k * speed * Eigen::Matrix3d::Identity();
-    if (speed > 1e-9) jac -= k * v_mid * v_mid.transpose() / speed;
+    Eigen::Matrix3d jac;
+    x_ = DragStep(x_, dt, options_.gravity, k, &jac);
     f.topRightCorner<3, 3>() += 0.5 * dt * dt * jac;
     f.bottomRightCorner<3, 3>() += dt * jac;
   }

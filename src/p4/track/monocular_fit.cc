@@ -7,42 +7,18 @@
 #include "p4/core/table.h"
 
 namespace p4::track {
-namespace {
-
-Vector6d Step(const Vector6d& x, double dt, const FlightModel& m) {
-  const Eigen::Vector3d g(0.0, 0.0, -m.gravity);
-  const auto accel = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d {
-    return g - m.drag_per_mass * v.norm() * v;
-  };
-  const Eigen::Vector3d v0 = x.tail<3>();
-  const Eigen::Vector3d a = accel(v0 + 0.5 * dt * accel(v0));
-  Vector6d out;
-  out.head<3>() = x.head<3>() + dt * v0 + 0.5 * dt * dt * a;
-  out.tail<3>() = v0 + dt * a;
-  return out;
-}
-
-}  // namespace
-
 Vector6d PropagateFlight(const Vector6d& state, double dt, const FlightModel& m) {
   Vector6d x = state;
   const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dt) / 0.002)));
   const double h = dt / steps;
   for (int i = 0; i < steps; ++i) {
-    Vector6d next = Step(x, h, m);
+    Vector6d next = DragStep(x, h, m.gravity, m.drag_per_mass);
     if (h > 0.0 && next(2) < m.ball_radius && x(2) >= m.ball_radius && next(5) < 0.0) {
       const double f = (x(2) - m.ball_radius) / (x(2) - next(2));
-      Vector6d at = Step(x, f * h, m);
+      Vector6d at = DragStep(x, f * h, m.gravity, m.drag_per_mass);
       if (table::OnSurface(at(0), at(1))) {
-        const double vh = std::hypot(at(3), at(4));
-        const double loss =
-            vh > 1e-6
-                ? std::min(m.friction * (1.0 + m.restitution) * std::abs(at(5)), 0.4 * vh) / vh
-                : 0.0;
-        at(3) *= 1.0 - loss;
-        at(4) *= 1.0 - loss;
-        at(5) = -m.restitution * at(5);
-        next = Step(at, (1.0 - f) * h, m);
+        at = BounceMatrix(at, m.restitution, m.friction) * at;
+        next = DragStep(at, (1.0 - f) * h, m.gravity, m.drag_per_mass);
       }
     }
     x = next;

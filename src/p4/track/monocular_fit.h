@@ -13,17 +13,10 @@
 #include <optional>
 #include <span>
 
+#include "p4/track/flight_model.h"
 #include "p4/track/kalman_filter.h"
 
 namespace p4::track {
-
-struct FlightModel {
-  double gravity = 9.81;
-  double drag_per_mass = 0.1407;  // 1/m
-  double ball_radius = 0.02;
-  double restitution = 0.88;
-  double friction = 0.25;
-};
 
 // Propagates (x, y, z, vx, vy, vz) by dt under gravity and drag, reflecting at the table top.
 Vector6d PropagateFlight(const Vector6d& state, double dt, const FlightModel& model);
