@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "p4/core/table.h"
+#include "p4/track/flight_model.h"
 
 namespace p4::track {
 
@@ -44,17 +45,8 @@ void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const Track
     filter->Predict(dt - hit);
     return;
   }
-  // Reflect: vz -> -e vz; friction takes mu (1 + e) |vz| of the horizontal speed, at most the
-  // 40 % that leaves a spinless ball rolling; more uncertainty, for the spin we do not know.
-  const double vh = std::hypot(at(3), at(4));
-  const double loss =
-      vh > 1e-6
-          ? std::min(o.bounce_friction * (1.0 + o.bounce_restitution) * std::abs(at(5)), 0.4 * vh) /
-                vh
-          : 0.0;
-  Matrix6d d = Matrix6d::Identity();
-  d(5, 5) = -o.bounce_restitution;
-  d(3, 3) = d(4, 4) = 1.0 - loss;
+  // Reflect at the table (restitution and friction), with more uncertainty for the spin.
+  const Matrix6d d = BounceMatrix(at, o.bounce_restitution, o.bounce_friction);
   filter->mutable_state() = d * filter->state();
   filter->mutable_covariance() = d * filter->covariance() * d.transpose();
   // Spin and friction change the velocity at the bounce in ways the model does not know.
@@ -70,15 +62,29 @@ void BallTracker::Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& v
   p.topLeftCorner<3, 3>() = m.covariance;
   p.bottomRightCorner<3, 3>() = velocity_sigma * velocity_sigma * Eigen::Matrix3d::Identity();
   filter_.Reset(x, p);
+  Began(t);
+}
+
+void BallTracker::Began(TimeNs t) {
   tracking_ = true;
   last_t_ = last_update_t_ = t;
-  last_position_ = m.position;
+  last_position_ = filter_.state().head<3>();
   pending_.reset();
+  ++restarts_;
+}
+
+std::optional<Eigen::Vector3d> BallTracker::PendingVelocity(TimeNs t, const Measurement& m) const {
+  if (!pending_ || t - pending_->first >= FromSeconds(0.05)) return std::nullopt;
+  const Eigen::Vector3d v =
+      (m.position - pending_->second.position) / ToSeconds(t - pending_->first);
+  if (v.norm() > options_.max_speed) return std::nullopt;
+  return v;
 }
 
 std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Measurement>& m) {
   TrackedState out;
   out.t = t;
+  bool used = false;
   if (!tracking_) {
     if (!m) {
       pending_.reset();
@@ -88,31 +94,12 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
       // The paper's start (§3.3): x0 = (0, 0, 0, 1, 1, 1), P0 = I, then the first correction.
       filter_.ResetPaper();
       filter_.Update(m->position, m->covariance);
-      tracking_ = true;
-      last_t_ = last_update_t_ = t;
-      last_position_ = filter_.state().head<3>();
-      pending_.reset();
-      ++restarts_;
-      out.measured = true;
-      out.cameras = m->cameras;
-      out.residual_px = m->residual_px;
-      out.position = filter_.state().head<3>();
-      out.velocity = filter_.state().tail<3>();
-      return out;
-    }
-    // Start from two measurements close in time (their difference gives the velocity); the
-    // first one is reported as it is.
-    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-    double sigma = 10.0;
-    if (pending_ && t - pending_->first < FromSeconds(0.05)) {
-      const double dt = ToSeconds(t - pending_->first);
-      const Eigen::Vector3d v = (m->position - pending_->second.position) / dt;
-      if (v.norm() <= options_.max_speed) {
-        velocity = v;
-        sigma = options_.init_velocity_sigma;
-      }
-    }
-    if (sigma > 5.0) {
+      Began(t);
+    } else if (const auto v = PendingVelocity(t, *m)) {
+      // Two measurements close in time: their difference gives the velocity.
+      Start(t, *m, *v, options_.init_velocity_sigma);
+    } else {
+      // The first one is reported as it is and kept for the next.
       pending_ = std::make_pair(t, *m);
       out.position = m->position;
       out.measured = true;
@@ -120,16 +107,10 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
       out.residual_px = m->residual_px;
       return out;
     }
-    Start(t, *m, velocity, sigma);
-    ++restarts_;
-    out.measured = true;
-    out.cameras = m->cameras;
-    out.residual_px = m->residual_px;
+    used = true;
   } else {
-    const double dt = ToSeconds(t - last_t_);
-    PredictWithBounce(&filter_, dt, options_);
+    PredictWithBounce(&filter_, ToSeconds(t - last_t_), options_);
     last_t_ = t;
-    bool used = false;
     if (m) {
       if (filter_.Mahalanobis2(m->position, m->covariance) <= options_.gate_chi2) {
         filter_.Update(m->position, m->covariance);
@@ -146,31 +127,28 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
                                             : Eigen::Vector3d::Zero();
           if (v.norm() <= options_.max_speed) {
             Start(t, *m, v, 2.0 * options_.init_velocity_sigma);
-            ++restarts_;
             used = true;
           }
         }
-        if (!used && pending_ && t - pending_->first < FromSeconds(0.05)) {
-          const double gap = ToSeconds(t - pending_->first);
-          const Eigen::Vector3d v = (m->position - pending_->second.position) / gap;
-          if (v.norm() <= options_.max_speed) {
-            Start(t, *m, v, options_.init_velocity_sigma);
-            ++restarts_;
+        if (!used) {
+          if (const auto v = PendingVelocity(t, *m)) {
+            Start(t, *m, *v, options_.init_velocity_sigma);
             used = true;
+          } else {
+            pending_ = std::make_pair(t, *m);
           }
         }
-        if (!used) pending_ = std::make_pair(t, *m);
       }
     }
     if (!used && ToSeconds(t - last_update_t_) > options_.max_coast_s) {
       tracking_ = false;
       return std::nullopt;
     }
-    out.measured = used;
-    if (used) {
-      out.cameras = m->cameras;
-      out.residual_px = m->residual_px;
-    }
+  }
+  out.measured = used;
+  if (used) {
+    out.cameras = m->cameras;
+    out.residual_px = m->residual_px;
   }
   out.position = filter_.state().head<3>();
   out.velocity = filter_.state().tail<3>();

@@ -68,8 +68,12 @@ class BallTracker {
  private:
   // Predicts the filter to dt ahead, with the table bounce.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
+  // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.
   void Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& velocity,
              double velocity_sigma);
+  void Began(TimeNs t);
+  // The velocity from the measurement kept in pending_ to m, if recent (50 ms) and plausible.
+  std::optional<Eigen::Vector3d> PendingVelocity(TimeNs t, const Measurement& m) const;
 
   TrackerOptions options_;
   KalmanFilter filter_;
