@@ -60,11 +60,16 @@ EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<Trajec
     }
     if (!row.measured) continue;
     ++report.measured_rows;
-    if (!ball || error_mm > options.false_positive_mm) {
+    if (!ball) {
       ++false_positives;
       continue;
     }
+    // Every measured row while the ball is in play counts in the error, near or far.
     measured_errors.push_back(error_mm);
+    if (error_mm > options.false_positive_mm) {
+      ++false_positives;
+      continue;
+    }
     has_measurement[t - truth.data()] = 1;
   }
   const int views_needed = std::min(options.min_views, rig.size());

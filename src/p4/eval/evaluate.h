@@ -22,7 +22,7 @@ struct EvalReport {
   int frames_seen = 0;  // in play and seen by >= min_views cameras
   int measured_rows = 0;
   int rows = 0;
-  double position_rmse_mm = 0.0;  // measured rows (true positives)
+  double position_rmse_mm = 0.0;  // measured rows while the ball is in play (also the far ones)
   double position_median_mm = 0.0;
   double position_p95_mm = 0.0;
   double position_rmse_all_mm = 0.0;  // every row while the ball is in play

@@ -5,6 +5,11 @@
 // same with rays through the two edge points (so lens distortion is handled), and place the
 // centre on the bisector of the two edge rays — the axis of the viewing cone — which removes
 // the ellipse-centre bias the paper neglects (its "p = p_e" approximation).
+//
+// Off the optical axis the ellipse is longer along the image radius than across it (by 1/cos of
+// the ray's angle to the axis): the axis measured must be named. The minor axis (across the
+// radius) is the one motion blur leaves alone; taking it for the radial one puts the ball
+// 1/cos(theta) too far (8 % at the edge of a 1280 px image with f = 1000 px).
 #pragma once
 
 #include <Eigen/Core>
@@ -20,11 +25,17 @@ struct SphereDepthResult {
   double half_angle = 0.0;  // alpha, radians
 };
 
-// centroid_px: centroid of the ball's image (distorted pixels); diameter_px: its diameter in
-// pixels (e.g. 2 sqrt(area / pi)); ball_radius: metres. nullopt for a non-positive or
+enum class EllipseAxis {
+  kAlongRadius,   // the major axis, along the image radius (the paper's x)
+  kAcrossRadius,  // the minor axis, across it
+};
+
+// centroid_px: centroid of the ball's image (distorted pixels); diameter_px: the ellipse's
+// diameter along `axis`, in pixels; ball_radius: metres. nullopt for a non-positive or
 // non-finite diameter, or a diameter so large the camera would be inside the ball.
 std::optional<SphereDepthResult> PointFromSphereImage(const Camera& camera,
                                                       const Eigen::Vector2d& centroid_px,
-                                                      double diameter_px, double ball_radius);
+                                                      double diameter_px, EllipseAxis axis,
+                                                      double ball_radius);
 
 }  // namespace p4

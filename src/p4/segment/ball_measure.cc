@@ -48,9 +48,14 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
   std::nth_element(inside.begin(), inside.begin() + inside.size() * 3 / 4, inside.end());
   const double contrast = inside[inside.size() * 3 / 4];
   if (contrast < options.min_contrast || contrast < 2.0 * floor) return std::nullopt;
+  // Coverage is summed near the region only (its box and the blur's fringe), so that a bright
+  // neighbour inside the window (a table edge line, a lamp) is not counted as ball.
+  const int f = options.fringe_px;
+  const int ax0 = std::max(x0, region.x0 - f), ay0 = std::max(y0, region.y0 - f),
+            ax1 = std::min(x1, region.x1 + f), ay1 = std::min(y1, region.y1 + f);
   double sw = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
+  for (int y = ay0; y < ay1; ++y) {
+    for (int x = ax0; x < ax1; ++x) {
       // Differences within the background's noise count as background.
       const double a = std::clamp(
           (sign * (Luma(image, x, y) - background) - floor) / (contrast - floor), 0.0, 1.0);

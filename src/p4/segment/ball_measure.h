@@ -22,6 +22,7 @@ struct BallMeasure {
 
 struct BallMeasureOptions {
   int margin_px = 3;           // window = region box grown by this (and by a quarter of its size)
+  int fringe_px = 2;           // coverage is summed over the region's box grown by this
   double min_contrast = 18.0;  // below it the luma says too little: no measure
 };
 

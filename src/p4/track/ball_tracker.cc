@@ -1,5 +1,6 @@
 #include "p4/track/ball_tracker.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "p4/core/table.h"
@@ -54,13 +55,12 @@ void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const Track
   filter->Predict(std::max(dt - hit, 1e-9));
 }
 
-void BallTracker::Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& velocity,
-                        double velocity_sigma) {
+void BallTracker::Start(TimeNs t, const Measurement& m, const Velocity& velocity) {
   Vector6d x;
-  x << m.position, velocity;
+  x << m.position, velocity.mean;
   Matrix6d p = Matrix6d::Zero();
   p.topLeftCorner<3, 3>() = m.covariance;
-  p.bottomRightCorner<3, 3>() = velocity_sigma * velocity_sigma * Eigen::Matrix3d::Identity();
+  p.bottomRightCorner<3, 3>() = velocity.covariance;
   filter_.Reset(x, p);
   Began(t);
 }
@@ -73,11 +73,19 @@ void BallTracker::Began(TimeNs t) {
   ++restarts_;
 }
 
-std::optional<Eigen::Vector3d> BallTracker::PendingVelocity(TimeNs t, const Measurement& m) const {
+std::optional<BallTracker::Velocity> BallTracker::PendingVelocity(TimeNs t,
+                                                                  const Measurement& m) const {
   if (!pending_ || t - pending_->first >= FromSeconds(0.05)) return std::nullopt;
-  const Eigen::Vector3d v =
-      (m.position - pending_->second.position) / ToSeconds(t - pending_->first);
-  if (v.norm() > options_.max_speed) return std::nullopt;
+  const double dt = ToSeconds(t - pending_->first);
+  Velocity v;
+  v.mean = (m.position - pending_->second.position) / dt;
+  const double sigma = options_.init_velocity_sigma;
+  v.covariance = (m.covariance + pending_->second.covariance) / (dt * dt) +
+                 sigma * sigma * Eigen::Matrix3d::Identity();
+  // Too fast even allowing for the measurements' noise (3 sigma along the worst direction).
+  const double worst = std::sqrt(v.covariance.eigenvalues().real().maxCoeff());
+  if (v.mean.norm() - 3.0 * worst > options_.max_speed) return std::nullopt;
+  if (worst > options_.max_speed) v.mean.setZero();  // the difference says nothing: no guess
   return v;
 }
 
@@ -97,7 +105,7 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
       Began(t);
     } else if (const auto v = PendingVelocity(t, *m)) {
       // Two measurements close in time: their difference gives the velocity.
-      Start(t, *m, *v, options_.init_velocity_sigma);
+      Start(t, *m, *v);
     } else {
       // The first one is reported as it is and kept for the next.
       pending_ = std::make_pair(t, *m);
@@ -126,13 +134,14 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
           const Eigen::Vector3d v = gap > 0 ? Eigen::Vector3d((m->position - last_position_) / gap)
                                             : Eigen::Vector3d::Zero();
           if (v.norm() <= options_.max_speed) {
-            Start(t, *m, v, 2.0 * options_.init_velocity_sigma);
+            const double sigma = 2.0 * options_.init_velocity_sigma;
+            Start(t, *m, {v, sigma * sigma * Eigen::Matrix3d::Identity()});
             used = true;
           }
         }
         if (!used) {
           if (const auto v = PendingVelocity(t, *m)) {
-            Start(t, *m, *v, options_.init_velocity_sigma);
+            Start(t, *m, *v);
             used = true;
           } else {
             pending_ = std::make_pair(t, *m);

@@ -69,11 +69,15 @@ class BallTracker {
   // Predicts the filter to dt ahead, with the table bounce.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
   // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.
-  void Start(TimeNs t, const Measurement& m, const Eigen::Vector3d& velocity,
-             double velocity_sigma);
+  struct Velocity {
+    Eigen::Vector3d mean;
+    Eigen::Matrix3d covariance;
+  };
+  void Start(TimeNs t, const Measurement& m, const Velocity& velocity);
   void Began(TimeNs t);
-  // The velocity from the measurement kept in pending_ to m, if recent (50 ms) and plausible.
-  std::optional<Eigen::Vector3d> PendingVelocity(TimeNs t, const Measurement& m) const;
+  // The velocity from the measurement kept in pending_ to m, if recent (50 ms) and plausible,
+  // with the covariance of the difference: a one-camera pair knows little along the rays.
+  std::optional<Velocity> PendingVelocity(TimeNs t, const Measurement& m) const;
 
   TrackerOptions options_;
   KalmanFilter filter_;

@@ -93,7 +93,13 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
       if (options_.refine) {
         // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
         // differently in each camera, which the epipolar check does not forgive.
-        if (const auto m = segment::MeasureBall(*images[c], r)) d.diameter_px = m->minor_diameter;
+        if (const auto m = segment::MeasureBall(*images[c], r)) {
+          // The lens and the encoder blur the ball's edge by a point-spread of psf_sigma_px,
+          // which adds psf^2 to the moment the minor diameter comes from: take it out.
+          const double psf = options_.psf_sigma_px;
+          d.diameter_px =
+              std::sqrt(std::max(1.0, m->minor_diameter * m->minor_diameter - 16.0 * psf * psf));
+        }
       }
       candidates[c].push_back(d);
     }
@@ -230,7 +236,9 @@ std::optional<Measurement> FrameSetTracker::SingleView(
     const Camera& camera = rig_.cameras[c];
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px, table::kBallRadius);
+      // The detection's diameter is the blur-proof minor axis, across the image radius.
+      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px,
+                                               EllipseAxis::kAcrossRadius, table::kBallRadius);
       if (!sphere) continue;
       const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
       if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0)

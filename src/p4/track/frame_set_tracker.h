@@ -38,9 +38,10 @@ struct FrameSetOptions {
   int roi_max_px = 240;  // ...grown with the predicted ball size and speed
   bool single_camera_fallback = true;
   double pixel_sigma = 0.5;              // centroid noise, px (for measurement covariances)
-  double diameter_sigma = 0.8;           // diameter noise, px
+  double diameter_sigma = 0.35;          // diameter noise, px (refined)
   double diameter_bias_px = 0.65;        // the binary region is this much narrower than the ball
   bool refine = true;                    // the diameter from luma coverage (MeasureBall)
+  double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
   // In a rig of several cameras a lone view continues a track only while the filter knows the

@@ -1,0 +1,74 @@
+#include "p4/eval/evaluate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "p4/geometry/test_cameras.h"
+
+namespace p4 {
+namespace {
+
+// 10 truth rows at 100 Hz: the ball in play for rows 2..9, seen by every camera.
+std::vector<TruthRow> Truth() {
+  std::vector<TruthRow> truth;
+  for (int i = 0; i < 10; ++i)
+    truth.push_back({0.01 * i, Eigen::Vector3d(0.1 * i, 0, 0.3), i >= 2});
+  return truth;
+}
+
+Rig TwoCameras() {
+  Rig rig;
+  const auto cameras = testing::ClubCameras();
+  rig.cameras = {cameras[0], cameras[1]};
+  return rig;
+}
+
+TrajectoryRow Row(const TruthRow& truth, double error_m, bool measured) {
+  TrajectoryRow row;
+  row.t = truth.t + 0.001;  // within half a frame of its truth row
+  row.position = truth.position + Eigen::Vector3d(0, 0, error_m);
+  row.measured = measured;
+  row.cameras = measured ? 2 : 0;
+  return row;
+}
+
+TEST(Evaluate, CountsEveryMeasuredRowInPlayInTheErrorAndFarOnesAsFalse) {
+  const auto truth = Truth();
+  std::vector<TrajectoryRow> run;
+  run.push_back(Row(truth[1], 0.0, true));     // no ball in play: false positive
+  run.push_back(Row(truth[2], 0.003, true));   // 3 mm
+  run.push_back(Row(truth[3], 0.004, true));   // 4 mm
+  run.push_back(Row(truth[4], 0.120, true));   // 120 mm: false, but counted in the error
+  run.push_back(Row(truth[5], 0.010, false));  // filled, not measured: only in rmse_all
+  const EvalReport r = Evaluate(truth, run, TwoCameras(), {});
+  EXPECT_EQ(r.frames, 10);
+  EXPECT_EQ(r.frames_in_play, 8);
+  EXPECT_EQ(r.measured_rows, 4);
+  EXPECT_NEAR(r.position_rmse_mm, std::sqrt((9.0 + 16.0 + 14400.0) / 3.0), 1e-6);
+  EXPECT_NEAR(r.position_rmse_all_mm, std::sqrt((9.0 + 16.0 + 14400.0 + 100.0) / 4.0), 1e-6);
+  EXPECT_NEAR(r.false_positive_rate, 2.0 / 4.0, 1e-12);
+  // Recall: rows 2 and 3 of the 8 in play (all seen by both cameras) have a true measurement.
+  EXPECT_EQ(r.frames_seen, 8);
+  EXPECT_NEAR(r.recall, 2.0 / 8.0, 1e-12);
+}
+
+TEST(Evaluate, RecallCountsOnlyFramesSeenByEnoughCameras) {
+  const auto truth = Truth();
+  std::vector<std::vector<float>> visibility(truth.size(), {1.0F, 1.0F});
+  visibility[2] = {1.0F, 0.0F};  // one camera only: not a frame the rig must measure
+  std::vector<TrajectoryRow> run{Row(truth[2], 0.001, true), Row(truth[3], 0.001, true)};
+  const EvalReport r = Evaluate(truth, run, TwoCameras(), visibility);
+  EXPECT_EQ(r.frames_seen, 7);
+  EXPECT_NEAR(r.recall, 1.0 / 7.0, 1e-12);
+}
+
+TEST(Evaluate, EmptyInputsGiveZeros) {
+  const EvalReport r = Evaluate({}, {}, TwoCameras(), {});
+  EXPECT_EQ(r.frames, 0);
+  EXPECT_EQ(r.position_rmse_mm, 0.0);
+  EXPECT_EQ(r.recall, 0.0);
+}
+
+}  // namespace
+}  // namespace p4
