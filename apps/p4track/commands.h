@@ -4,11 +4,16 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace p4::app {
 
 std::function<int()> AddSimulateCommand(CLI::App& app);
 std::function<int()> AddTrackCommand(CLI::App& app);
 std::function<int()> AddEvalCommand(CLI::App& app);
+std::function<int()> AddCalibrateCommand(CLI::App& app);
+
+// "1280x720" -> width, height (even, 64x48 to 7680x4320); throws p4::Error naming `flag`.
+void ParseSize(const std::string& text, const std::string& flag, int* width, int* height);
 
 }  // namespace p4::app

@@ -20,6 +20,7 @@ int Run(int argc, char** argv) {
       {"simulate", p4::app::AddSimulateCommand(app)},
       {"track", p4::app::AddTrackCommand(app)},
       {"eval", p4::app::AddEvalCommand(app)},
+      {"calibrate", p4::app::AddCalibrateCommand(app)},
   };
   try {
     app.parse(argc, argv);

@@ -48,24 +48,10 @@ struct SimulateArgs {
   int threads = 0;
 };
 
-void ParseSize(const std::string& text, int* w, int* h) {
-  const auto x = text.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument("no x");
-    *w = std::stoi(text.substr(0, x));
-    *h = std::stoi(text.substr(x + 1));
-  } catch (const std::exception&) {
-    throw Error("--size: expected WIDTHxHEIGHT, e.g. 1280x720 (got '" + text + "')");
-  }
-  if (*w < 64 || *h < 48 || *w > 7680 || *h > 4320 || *w % 2 || *h % 2) {
-    throw Error("--size: width and height must be even, 64x48 to 7680x4320 (got '" + text + "')");
-  }
-}
-
 int Run(const SimulateArgs& a) {
   const auto started = std::chrono::steady_clock::now();
   int width = 0, height = 0;
-  ParseSize(a.size, &width, &height);
+  ParseSize(a.size, "--size", &width, &height);
   if (a.fps < 1 || a.fps > 1000) throw Error("--fps: must be in [1, 1000]");
   const double exposure = a.exposure_ms / 1000.0;
   if (!(exposure >= 0.0) || exposure > 1.0 / a.fps) {

@@ -22,8 +22,8 @@ bool BoardSpec::IsValid(std::string* error) const {
   }
   if (type == Type::kCharuco) {
     if (!(marker > 0.0 && marker < square)) {
-      *error = "marker size must be positive and smaller than the square, got " +
-               std::to_string(marker);
+      *error =
+          "marker size must be positive and smaller than the square, got " + std::to_string(marker);
       return false;
     }
     try {
@@ -42,11 +42,10 @@ bool DetectBoard(const cv::Mat& gray, const BoardSpec& spec, BoardView* view, st
   if (spec.type == BoardSpec::Type::kChessboard) {
     const cv::Size pattern(spec.cols, spec.rows);
     std::vector<cv::Point2f> corners;
-    if (!cv::findChessboardCorners(
-            gray, pattern, corners,
-            cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
-      *why = "no " + std::to_string(spec.cols) + "x" + std::to_string(spec.rows) +
-             " chessboard found";
+    if (!cv::findChessboardCorners(gray, pattern, corners,
+                                   cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
+      *why =
+          "no " + std::to_string(spec.cols) + "x" + std::to_string(spec.rows) + " chessboard found";
       return false;
     }
     // As OpenCV's calibration sample does: 11x11 window, to 1e-4 px.
@@ -62,9 +61,9 @@ bool DetectBoard(const cv::Mat& gray, const BoardSpec& spec, BoardView* view, st
     return true;
   }
   const auto dictionary = cv::aruco::getPredefinedDictionary(ArucoDictionaryId(spec.dictionary));
-  const auto board = cv::aruco::CharucoBoard::create(spec.cols, spec.rows,
-                                                     static_cast<float>(spec.square),
-                                                     static_cast<float>(spec.marker), dictionary);
+  const auto board =
+      cv::aruco::CharucoBoard::create(spec.cols, spec.rows, static_cast<float>(spec.square),
+                                      static_cast<float>(spec.marker), dictionary);
   std::vector<std::vector<cv::Point2f>> marker_corners;
   std::vector<int> marker_ids;
   cv::aruco::detectMarkers(gray, dictionary, marker_corners, marker_ids);
@@ -77,8 +76,8 @@ bool DetectBoard(const cv::Mat& gray, const BoardSpec& spec, BoardView* view, st
   cv::aruco::interpolateCornersCharuco(marker_corners, marker_ids, gray, board, corners, ids);
   // Six corners constrain a homography with room to spare; fewer make calibration fragile.
   if (ids.size() < 6) {
-    *why = std::to_string(marker_ids.size()) + " marker(s) but only " +
-           std::to_string(ids.size()) + " ChArUco corner(s) (6 needed)";
+    *why = std::to_string(marker_ids.size()) + " marker(s) but only " + std::to_string(ids.size()) +
+           " ChArUco corner(s) (6 needed)";
     return false;
   }
   view->pixels = corners;

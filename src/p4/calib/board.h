@@ -16,8 +16,8 @@ struct BoardSpec {
   // ChArUco: squares per row and per column (e.g. 5 x 7).
   int cols = 9;
   int rows = 6;
-  double square = 0.025;  // side of a square, metres
-  double marker = 0.0;    // ChArUco: side of a marker, metres (< square)
+  double square = 0.025;                   // side of a square, metres
+  double marker = 0.0;                     // ChArUco: side of a marker, metres (< square)
   std::string dictionary = "DICT_4X4_50";  // ChArUco only
 
   // On failure *error names the field and the value.

@@ -10,7 +10,8 @@
 namespace p4::calib {
 namespace {
 
-const std::string kChessboard = std::string(P4_SHARED_DATA) + "/calibration/opencv_stereo_chessboard";
+const std::string kChessboard =
+    std::string(P4_SHARED_DATA) + "/calibration/opencv_stereo_chessboard";
 
 std::vector<BoardView> LeftViews(int* width, int* height) {
   BoardSpec spec;  // 9 x 6 inner corners, 25 mm: OpenCV's sample board
@@ -99,8 +100,9 @@ TEST(CalibrateIntrinsics, RefusesTooFewViews) {
 
 TEST(DetectBoard, SaysWhatIsMissing) {
   BoardSpec spec;  // a 9x6 chessboard, looked for in the ChArUco photo
-  const cv::Mat gray = cv::imread(
-      std::string(P4_SHARED_DATA) + "/calibration/charuco_photo/choriginal.jpg", cv::IMREAD_GRAYSCALE);
+  const cv::Mat gray =
+      cv::imread(std::string(P4_SHARED_DATA) + "/calibration/charuco_photo/choriginal.jpg",
+                 cv::IMREAD_GRAYSCALE);
   BoardView view;
   std::string why;
   EXPECT_FALSE(DetectBoard(gray, spec, &view, &why));
@@ -117,8 +119,9 @@ TEST(DetectBoard, SaysWhatIsMissing) {
 
 // OpenCV's ChArUco tutorial photo (5 x 7 squares, DICT_6X6_250): corners are found.
 TEST(DetectBoard, FindsChArUcoCornersInARealPhoto) {
-  const cv::Mat gray = cv::imread(std::string(P4_SHARED_DATA) + "/calibration/charuco_photo/choriginal.jpg",
-                                  cv::IMREAD_GRAYSCALE);
+  const cv::Mat gray =
+      cv::imread(std::string(P4_SHARED_DATA) + "/calibration/charuco_photo/choriginal.jpg",
+                 cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(gray.empty());
   BoardSpec spec;
   spec.type = BoardSpec::Type::kCharuco;

@@ -14,8 +14,8 @@ double Bilinear(const cv::Mat& gray, double x, double y) {
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
   const double fx = x - x0, fy = y - y0;
   const auto at = [&](int xx, int yy) {
-    return static_cast<double>(gray.at<uint8_t>(std::clamp(yy, 0, gray.rows - 1),
-                                                std::clamp(xx, 0, gray.cols - 1)));
+    return static_cast<double>(
+        gray.at<uint8_t>(std::clamp(yy, 0, gray.rows - 1), std::clamp(xx, 0, gray.cols - 1)));
   };
   return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
          fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
@@ -41,8 +41,8 @@ std::optional<Line> FitEdge(const cv::Mat& gray, const Eigen::Vector2d& a, const
   for (double t = 0.15 * length; t <= 0.85 * length; t += 0.5) {
     const Eigen::Vector2d p = a + t * along;
     // Gradient along the normal, sampled every 0.25 px; its centroid is the edge.
-    double sw = 0.0, ss = 0.0, prev = Bilinear(gray, p.x() - reach * normal.x(),
-                                                     p.y() - reach * normal.y());
+    double sw = 0.0, ss = 0.0,
+           prev = Bilinear(gray, p.x() - reach * normal.x(), p.y() - reach * normal.y());
     for (double s = -reach + 0.25; s <= reach + 1e-9; s += 0.25) {
       const Eigen::Vector2d q = p + s * normal;
       const double v = Bilinear(gray, q.x(), q.y());
@@ -64,7 +64,8 @@ std::optional<Line> FitEdge(const cv::Mat& gray, const Eigen::Vector2d& a, const
     const Line line{mean, eig.eigenvectors().col(1)};
     if (pass == 1) return line;
     const Eigen::Vector2d n(-line.direction.y(), line.direction.x());
-    std::erase_if(points, [&](const Eigen::Vector2d& p) { return std::abs(n.dot(p - mean)) > 0.5; });
+    std::erase_if(points,
+                  [&](const Eigen::Vector2d& p) { return std::abs(n.dot(p - mean)) > 0.5; });
     if (points.size() < 4) return std::nullopt;
   }
   return std::nullopt;

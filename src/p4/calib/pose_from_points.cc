@@ -144,10 +144,9 @@ std::optional<PoseFit> SolvePoseAndFocal(const std::string& name, int width, int
   cv::Mat rvec, tvec;
   RvecTvecFromRigid(best->camera.cam_from_world, &rvec, &tvec);
   std::vector<cv::Mat> rvecs{rvec}, tvecs{tvec};
-  const int flags = cv::CALIB_USE_INTRINSIC_GUESS |
-                    cv::CALIB_FIX_PRINCIPAL_POINT | cv::CALIB_FIX_ASPECT_RATIO |
-                    cv::CALIB_ZERO_TANGENT_DIST | cv::CALIB_FIX_K1 | cv::CALIB_FIX_K2 |
-                    cv::CALIB_FIX_K3;
+  const int flags = cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_PRINCIPAL_POINT |
+                    cv::CALIB_FIX_ASPECT_RATIO | cv::CALIB_ZERO_TANGENT_DIST | cv::CALIB_FIX_K1 |
+                    cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3;
   try {
     cv::calibrateCamera(std::vector<std::vector<cv::Point3f>>{world},
                         std::vector<std::vector<cv::Point2f>>{pixels}, cv::Size(width, height), K,

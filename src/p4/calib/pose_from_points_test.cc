@@ -14,8 +14,8 @@ namespace {
 // The table features `calibrate table` uses: 4 corners of the playing surface, 2 net-post tops.
 std::vector<Eigen::Vector3d> TableFeatures() {
   const double hx = 0.5 * table::kLength, hy = 0.5 * table::kWidth;
-  return {{-hx, hy, 0.0}, {hx, hy, 0.0}, {hx, -hy, 0.0}, {-hx, -hy, 0.0},
-          {0.0, -0.915, 0.1525}, {0.0, 0.915, 0.1525}};
+  return {{-hx, hy, 0.0},  {hx, hy, 0.0},         {hx, -hy, 0.0},
+          {-hx, -hy, 0.0}, {0.0, -0.915, 0.1525}, {0.0, 0.915, 0.1525}};
 }
 
 std::vector<PointMatch> Observe(const Camera& camera, const std::vector<Eigen::Vector3d>& world,

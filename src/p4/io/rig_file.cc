@@ -161,7 +161,8 @@ Rig ReadRig(const std::string& path) {
   return rig;
 }
 
-void WriteRig(const Rig& rig, const std::string& path) {
+void WriteRig(const Rig& rig, const std::string& path,
+              const std::map<std::string, double>& reprojection_error_px) {
   std::string why;
   if (!ValidateRig(rig, &why)) throw Error(path + ": refusing to write an invalid rig: " + why);
   const std::filesystem::path target(path);
@@ -184,6 +185,10 @@ void WriteRig(const Rig& rig, const std::string& path) {
       const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> r = camera.cam_from_world.rotation;
       fs << "rotation" << ToMat(r.data(), 3, 3);
       fs << "translation" << ToMat(camera.cam_from_world.translation.data(), 3, 1);
+      if (const auto it = reprojection_error_px.find(camera.name);
+          it != reprojection_error_px.end()) {
+        fs << "reprojection_error_px" << it->second;
+      }
       fs << "}";
     }
     fs << "]";

@@ -3,6 +3,7 @@
 // in hand-written files, plain (nested) number lists.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "p4/geometry/rig.h"
@@ -15,7 +16,10 @@ namespace p4 {
 Rig ReadRig(const std::string& path);
 
 // Writes `.yaml`/`.yml` or `.json` (by extension) atomically (temporary file, then rename).
+// `reprojection_error_px` (by camera name, optional) is written beside each camera it names as
+// `reprojection_error_px`, the RMS of its calibration; readers ignore it.
 // Throws p4::Error when the rig is invalid or the file cannot be written.
-void WriteRig(const Rig& rig, const std::string& path);
+void WriteRig(const Rig& rig, const std::string& path,
+              const std::map<std::string, double>& reprojection_error_px = {});
 
 }  // namespace p4

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "p4/core/error.h"
+#include "p4/io/csv.h"
 
 namespace p4 {
 
@@ -40,40 +41,6 @@ void RunWriter::Write(const track::FrameSetResult& result) {
   detections_.flush();
 }
 
-namespace {
-
-std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std::string& header) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open");
-  std::string line;
-  if (!std::getline(in, line) || line != header) {
-    throw Error(path + ": line 1: expected the header '" + header + "'");
-  }
-  std::vector<std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(std::move(cells));
-  }
-  return rows;
-}
-
-double Number(const std::string& path, std::size_t row, const std::string& cell) {
-  try {
-    std::size_t used = 0;
-    const double v = std::stod(cell, &used);
-    if (used != cell.size()) throw std::invalid_argument(cell);
-    return v;
-  } catch (const std::exception&) {
-    throw Error(fmt::format("{}: line {}: '{}' is not a number", path, row + 2, cell));
-  }
-}
-
-}  // namespace
 
 std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
   const auto rows = ReadCsv(path, "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
@@ -82,12 +49,12 @@ std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
     const auto& r = rows[i];
     if (r.size() != 10) throw Error(fmt::format("{}: line {}: expected 10 fields", path, i + 2));
     TrajectoryRow row;
-    row.t = Number(path, i, r[0]);
-    row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
-    row.velocity = {Number(path, i, r[4]), Number(path, i, r[5]), Number(path, i, r[6])};
-    row.measured = Number(path, i, r[7]) != 0.0;
-    row.cameras = static_cast<int>(Number(path, i, r[8]));
-    row.residual_px = Number(path, i, r[9]);
+    row.t = CsvNumber(path, i, r[0]);
+    row.position = {CsvNumber(path, i, r[1]), CsvNumber(path, i, r[2]), CsvNumber(path, i, r[3])};
+    row.velocity = {CsvNumber(path, i, r[4]), CsvNumber(path, i, r[5]), CsvNumber(path, i, r[6])};
+    row.measured = CsvNumber(path, i, r[7]) != 0.0;
+    row.cameras = static_cast<int>(CsvNumber(path, i, r[8]));
+    row.residual_px = CsvNumber(path, i, r[9]);
     out.push_back(row);
   }
   return out;
@@ -100,10 +67,10 @@ std::vector<TruthRow> ReadTruthCsv(const std::string& path) {
     const auto& r = rows[i];
     if (r.size() != 11) throw Error(fmt::format("{}: line {}: expected 11 fields", path, i + 2));
     TruthRow row;
-    row.t = Number(path, i, r[0]);
+    row.t = CsvNumber(path, i, r[0]);
     row.in_play = r[10] == "1";
     if (row.in_play)
-      row.position = {Number(path, i, r[1]), Number(path, i, r[2]), Number(path, i, r[3])};
+      row.position = {CsvNumber(path, i, r[1]), CsvNumber(path, i, r[2]), CsvNumber(path, i, r[3])};
     out.push_back(row);
   }
   return out;

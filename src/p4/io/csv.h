@@ -1,0 +1,17 @@
+// Small CSV files with a fixed header (the run's and the calibration's), read whole. Errors name
+// the file and the line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace p4 {
+
+// The rows after the header line, split at commas (blank lines skipped). Throws p4::Error when
+// the file cannot be opened or its first line is not `header`.
+std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std::string& header);
+
+// The cell as a number; throws p4::Error naming the file, the line (row + 2) and the text.
+double CsvNumber(const std::string& path, std::size_t row, const std::string& cell);
+
+}  // namespace p4
