@@ -162,6 +162,7 @@ int RunRig(const RigArgs& a) {
                               intrinsics[i]->height));
     }
     std::vector<std::vector<calib::MarkerObservation>> seen;
+    seen.reserve(frames.size());
     for (const auto& f : frames) seen.push_back(calib::DetectMarkers(f.gray, layout.dictionary));
     std::string why;
     const auto result =
