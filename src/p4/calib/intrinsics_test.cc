@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <opencv2/aruco/charuco.hpp>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "p4/calib/board.h"
 
@@ -115,6 +119,56 @@ TEST(DetectBoard, SaysWhatIsMissing) {
   bad.square = 0.0;
   EXPECT_FALSE(bad.IsValid(&why));
   EXPECT_NE(why.find("square size"), std::string::npos);
+}
+
+// A ChArUco board (OpenCV's drawing) seen by a known camera from 12 poses (a homography per
+// view, no distortion): the calibration recovers the focal length and principal point.
+TEST(CalibrateIntrinsics, RecoversAKnownCameraFromChArUcoViews) {
+  BoardSpec spec;
+  spec.type = BoardSpec::Type::kCharuco;
+  spec.cols = 7, spec.rows = 5, spec.square = 0.04, spec.marker = 0.03;
+  const auto board =
+      cv::aruco::CharucoBoard::create(spec.cols, spec.rows, 0.04F, 0.03F,
+                                      cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50));
+  const int px_per_square = 60;
+  cv::Mat drawing;
+  board->draw(cv::Size(spec.cols * px_per_square, spec.rows * px_per_square), drawing);
+  // Board drawing pixels -> board metres (x right, y down, as the board's corners are laid out).
+  const double m_per_px = spec.square / px_per_square;
+  const cv::Matx33d K(900.0, 0.0, 645.0, 0.0, 900.0, 350.0, 0.0, 0.0, 1.0);
+  std::vector<BoardView> views;
+  for (int i = 0; i < 12; ++i) {
+    const cv::Vec3d rvec(0.35 * std::sin(i * 0.9), 0.35 * std::cos(i * 1.3), 0.2 * i);
+    const cv::Vec3d tvec(-0.14 + 0.01 * (i % 3), 0.1 - 0.01 * (i % 4), 0.55 + 0.03 * (i % 5));
+    cv::Matx33d tilt;
+    cv::Rodrigues(rvec, tilt);
+    // Facing the camera: the board's z axis towards it, its y axis up in the image.
+    const cv::Matx33d R = tilt * cv::Matx33d(1, 0, 0, 0, -1, 0, 0, 0, -1);
+    // Homography of the board plane (z = 0) into the image, from drawing pixels.
+    const cv::Matx33d board_to_image = K * cv::Matx33d(R(0, 0), R(0, 1), tvec[0], R(1, 0), R(1, 1),
+                                                       tvec[1], R(2, 0), R(2, 1), tvec[2]);
+    // The drawing's row 0 is the board's far edge: its y runs opposite to the corners' y.
+    const double height_m = spec.rows * spec.square;
+    const cv::Matx33d drawing_to_board(m_per_px, 0.0, 0.0, 0.0, -m_per_px, height_m, 0.0, 0.0, 1.0);
+    cv::Mat image(720, 1280, CV_8UC1);
+    cv::warpPerspective(drawing, image, cv::Mat(board_to_image * drawing_to_board), image.size(),
+                        cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(255));
+    BoardView view;
+    std::string why;
+    if (DetectBoard(image, spec, &view, &why)) views.push_back(view);
+  }
+  ASSERT_GE(views.size(), 10u);
+  IntrinsicsOptions options;
+  options.zero_tangential = true;
+  options.fix_k3 = true;
+  std::string error;
+  const auto result = CalibrateIntrinsics(views, 1280, 720, "charuco", options, &error);
+  ASSERT_TRUE(result) << error;
+  EXPECT_NEAR(result->camera.fx, 900.0, 9.0);
+  EXPECT_NEAR(result->camera.fy, 900.0, 9.0);
+  EXPECT_NEAR(result->camera.cx, 645.0, 5.0);
+  EXPECT_NEAR(result->camera.cy, 350.0, 5.0);
+  EXPECT_LT(result->rms_px, 0.5);
 }
 
 // OpenCV's ChArUco tutorial photo (5 x 7 squares, DICT_6X6_250): corners are found.
