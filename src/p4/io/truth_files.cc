@@ -47,6 +47,7 @@ std::string EventToJsonLine(const sim::TruthEvent& e) {
     line += fmt::format(",\"x\":{:.6f},\"y\":{:.6f},\"z\":{:.6f}", e.position->x(), e.position->y(),
                         e.position->z());
   }
+  if (e.confidence) line += fmt::format(",\"confidence\":{:.3f}", *e.confidence);
   if (e.winner) {
     line += fmt::format(",\"winner\":\"{}\"", e.winner);
     if (!e.reason.empty()) line += fmt::format(",\"reason\":\"{}\"", e.reason);

@@ -13,26 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "p4/game/event.h"
 #include "p4/game/match_score.h"
 #include "p4/sim/ball_physics.h"
 #include "p4/sim/trajectory.h"
 
 namespace p4::sim {
 
-// One truth event (DESIGN.md events.jsonl). `position` is the ball centre for serve/hit, the
-// contact point for bounce (on the table, z = 0), net and floor, and the landing point outside
-// the table (z = 0) for out.
-struct TruthEvent {
-  double t = 0.0;
-  std::string type;  // serve, hit, bounce, net, out, floor, point, game, match
-  char player = 0;   // serve, hit: who struck the ball
-  char side = 0;     // bounce: 'A' or 'B' half of the table
-  std::optional<Eigen::Vector3d> position;
-  char winner = 0;     // point, game, match
-  std::string reason;  // point
-  std::array<int, 2> score{};
-  std::array<int, 2> games{};
-};
+// One truth event (DESIGN.md events.jsonl): see game::Event.
+using TruthEvent = game::Event;
 
 struct MatchOptions {
   int points = 6;   // points to play (fewer if the match ends first)
