@@ -3,10 +3,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "p4/core/error.h"
 #include "p4/eval/evaluate.h"
+#include "p4/eval/evaluate_events.h"
+#include "p4/io/event_files.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/run_files.h"
 #include "p4/io/truth_files.h"
@@ -26,7 +29,17 @@ int Run(const EvalArgs& a) {
   const auto visibility =
       ReadVisibilityCsv((fs::path(a.truth) / "truth_visibility.csv").string(), rig);
   const EvalReport report = Evaluate(truth, run, rig, visibility);
-  const std::string json = report.ToJson();
+  auto json_report = nlohmann::ordered_json::parse(report.ToJson());
+  // The game layer, when the run has one (tracked without --no-referee).
+  const fs::path run_events = fs::path(a.run) / "events.jsonl";
+  if (fs::exists(run_events)) {
+    const EventReport events =
+        EvaluateEvents(ReadEventsJsonl((fs::path(a.truth) / "truth_events.jsonl").string()),
+                       ReadEventsJsonl(run_events.string()));
+    const nlohmann::ordered_json game = events.ToJson();
+    for (const auto& [key, value] : game.items()) json_report[key] = value;
+  }
+  const std::string json = json_report.dump(2);
   std::cout << json << std::endl;
   if (!a.out.empty()) {
     std::ofstream out(a.out);

@@ -20,6 +20,10 @@ struct TrackArgs {
   bool no_roi = false, no_single_camera = false;
   int stride = 1;
   double epipolar_px = 4.0;
+  std::vector<std::string> players{"A", "B"};
+  std::string first_server = "A";
+  int best_of = 5;
+  bool no_referee = false;
 };
 
 int Run(const TrackArgs& a) {
@@ -37,10 +41,15 @@ int Run(const TrackArgs& a) {
   options.single_camera_fallback = !a.no_single_camera;
   options.epipolar_px = a.epipolar_px;
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
+  GameOptions game;
+  game.enabled = !a.no_referee;
+  game.referee.best_of = a.best_of;
+  game.referee.first_server = a.first_server == "B" ? 'B' : 'A';
+  game.players = {a.players[0], a.players[1]};
   spdlog::info("tracking {} source(s) with {} ({} camera(s)) into {}", a.sources.size(), a.rig,
                rig.size(), a.out);
   const TrackRunSummary summary =
-      RunTracking(rig, classes, a.sources, a.out, options,
+      RunTracking(rig, classes, a.sources, a.out, options, game,
                   [](int64_t n) { spdlog::info("tracking: {} frame sets", n); });
   for (const auto& e : summary.sources_ended_with_error) spdlog::warn("source ended: {}", e);
   spdlog::info("{}", summary.Report());
@@ -56,7 +65,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_option("--rig", args->rig, "Rig file (rig.yaml) of the cameras, in the sources' order")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--out", args->out, "Output folder (trajectory.csv, detections.csv)")->required();
+  cmd->add_option("--out", args->out,
+                  "Output folder (trajectory.csv, detections.csv, events.jsonl, score.json)")
+      ->required();
   cmd->add_option("sources", args->sources, "One per camera: video file, /dev/videoN, rtsp://...")
       ->required();
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
@@ -76,6 +87,17 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_option("--epipolar-px", args->epipolar_px, "Epipolar distance bound, pixels")
       ->check(CLI::Range(0.5, 100.0))
       ->capture_default_str();
+  cmd->add_option("--players", args->players, "Names of player A (x < 0) and B, e.g. Ana,Ben")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  cmd->add_option("--first-server", args->first_server, "Who serves first: A or B")
+      ->check(CLI::IsMember({"A", "B"}))
+      ->capture_default_str();
+  cmd->add_option("--best-of", args->best_of, "Games in the match (odd)")
+      ->check(CLI::IsMember({1, 3, 5, 7}))
+      ->capture_default_str();
+  cmd->add_flag("--no-referee", args->no_referee, "Track only: no events, no score");
   return [args]() { return Run(*args); };
 }
 

@@ -73,6 +73,31 @@ TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
       << line;
 }
 
+// The game layer end to end: events from the track, the referee's points and score.
+TEST_F(TrackCommand, TheRefereeScoresTheSimulatedPoints) {
+  std::string out;
+  ASSERT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run_.string(), &out), 0) << out;
+  const auto report = nlohmann::json::parse(out);
+  EXPECT_GE(report["bounces_truth"].get<int>(), 5);
+  EXPECT_GE(report["bounce_recall"].get<double>(), 0.99);
+  EXPECT_GE(report["bounce_precision"].get<double>(), 0.99);
+  EXPECT_LE(report["bounce_position_median_mm"].get<double>(), 5.0);
+  EXPECT_LE(report["bounce_time_median_ms"].get<double>(), 5.0);
+  const int points = report["points_truth"].get<int>();  // the 8 s scene holds one
+  EXPECT_GE(points, 1);
+  EXPECT_EQ(report["points_run"].get<int>(), points);
+  EXPECT_DOUBLE_EQ(report["point_winner_share"].get<double>(), 1.0);
+  EXPECT_TRUE(report["final_score_right"].get<bool>());
+  // score.json as DESIGN.md describes it, and point events with the running score.
+  const auto score = nlohmann::json::parse(Slurp(run_ / "score.json"));
+  EXPECT_EQ(score["points_played"].get<int>(), points);
+  EXPECT_EQ(score["players"][0].get<std::string>(), "A");
+  const std::string events = Slurp(run_ / "events.jsonl");
+  EXPECT_NE(events.find("\"type\":\"bounce\",\"side\":"), std::string::npos);
+  EXPECT_NE(events.find("\"type\":\"point\",\"winner\":"), std::string::npos);
+  EXPECT_NE(events.find("\"type\":\"serve\",\"player\":\"A\""), std::string::npos);
+}
+
 TEST_F(TrackCommand, BadInputGetsAClearMessage) {
   const std::string rig = (sim_ / "rig.yaml").string();
   const std::string cam0 = (sim_ / "cam0.mp4").string();

@@ -105,6 +105,27 @@ std::vector<Event> EventDetector::Push(double t, const Eigen::Vector3d& position
 std::vector<Event> EventDetector::Flush() {
   std::vector<Event> out;
   if (pending_.size() >= 2 && piece_.size() >= 3) Cut(&out);
+  // The ball lost from sight on its way down beside the table (behind a player, below the
+  // table's edge in every view): out, if its flight crosses the surface's plane outside the
+  // table soon after the last point.
+  if (!out_reported_ && piece_.size() >= 3) {
+    const Fit fit = FitSamples(piece_, true);
+    const double r = options_.ball_radius;
+    const Sample& last = piece_.back();
+    for (double t = last.t; t <= last.t + options_.max_extrapolation_s; t += 0.001) {
+      const Eigen::Vector3d p = fit.At(t);
+      if (p.z() >= r) continue;
+      if (fit.VelocityAt(t).z() < 0.0 && !table::OnSurface(p.x(), p.y())) {
+        Event e;
+        e.t = t;
+        e.type = "out";
+        e.position = Eigen::Vector3d(p.x(), p.y(), 0.0);
+        e.confidence = 0.6;
+        out.push_back(e);
+      }
+      break;
+    }
+  }
   piece_.clear();
   pending_.clear();
   net_reported_ = out_reported_ = false;

@@ -20,18 +20,20 @@
 namespace p4::game {
 
 struct EventDetectorOptions {
-  double break_m = 0.015;     // a point this far from the piece's prediction may start a new piece
-  int confirm_points = 3;     // points after a cut that must agree with each other
-  double max_gap_s = 0.12;    // longer without a point ends the piece (no event)
-  double window_s = 0.2;      // a piece's fit uses its last this much
-  int min_free_fit = 8;       // below this many points the fit's acceleration is gravity alone
-  double gravity = 9.81;      // m/s^2
+  double break_m = 0.015;   // a point this far from the piece's prediction may start a new piece
+  int confirm_points = 3;   // points after a cut that must agree with each other
+  double max_gap_s = 0.12;  // longer without a point ends the piece (no event)
+  double window_s = 0.2;    // a piece's fit uses its last this much
+  int min_free_fit = 8;     // below this many points the fit's acceleration is gravity alone
+  double gravity = 9.81;    // m/s^2
   double ball_radius = table::kBallRadius;
   double bounce_max_z = 0.08;  // m, ball centre where the pieces meet, for a table bounce
   double bounce_min_vz = 0.2;  // m/s, |vz| before and after a bounce at least
   double table_margin = 0.02;  // m, the outline grown by this for a bounce (edge balls)
   double net_reach = 0.08;     // m, |x| of a cut that can be the net
   double min_hit_dv = 1.5;     // m/s, velocity change of a hit
+  // A piece that ends (the ball lost) is followed this far ahead for an "out".
+  double max_extrapolation_s = 0.08;
 
   bool IsValid(std::string* error) const;
 };

@@ -7,10 +7,11 @@
 
 #include "p4/core/error.h"
 #include "p4/io/csv.h"
+#include "p4/io/event_files.h"
 
 namespace p4 {
 
-RunWriter::RunWriter(const std::string& dir, const Rig& rig) {
+RunWriter::RunWriter(const std::string& dir, const Rig& rig) : dir_(dir) {
   for (const auto& c : rig.cameras) camera_names_.push_back(c.name);
   const auto open = [&](std::ofstream& out, const std::string& name, const char* header) {
     const std::string path = (std::filesystem::path(dir) / name).string();
@@ -21,6 +22,18 @@ RunWriter::RunWriter(const std::string& dir, const Rig& rig) {
   };
   open(trajectory_, "trajectory.csv", "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
   open(detections_, "detections.csv", "t,camera,u,v,diameter_px,area_px,accepted");
+  const std::string events = (std::filesystem::path(dir) / "events.jsonl").string();
+  events_.open(events);
+  if (!events_) throw Error(events + ": cannot create the file");
+}
+
+void RunWriter::WriteEvent(const game::Event& event) {
+  events_ << EventToJsonLine(event) << '\n';
+  events_.flush();
+}
+
+void RunWriter::WriteScore(const nlohmann::json& score) {
+  WriteJson((std::filesystem::path(dir_) / "score.json").string(), score);
 }
 
 void RunWriter::Write(const track::FrameSetResult& result) {
@@ -40,7 +53,6 @@ void RunWriter::Write(const track::FrameSetResult& result) {
   trajectory_.flush();
   detections_.flush();
 }
-
 
 std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
   const auto rows = ReadCsv(path, "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");

@@ -1,12 +1,15 @@
-// A tracking run's files (DESIGN.md): trajectory.csv and detections.csv, appended and flushed
-// row by row so that a crash loses at most the last moment; and readers for them (eval).
+// A tracking run's files (DESIGN.md): trajectory.csv, detections.csv and events.jsonl, appended
+// and flushed row by row so that a crash loses at most the last moment, and score.json replaced
+// atomically after every point; and readers for them (eval).
 #pragma once
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "p4/game/event.h"
 #include "p4/geometry/rig.h"
 #include "p4/track/frame_set_tracker.h"
 
@@ -14,14 +17,18 @@ namespace p4 {
 
 class RunWriter {
  public:
-  // Creates (truncates) DIR/trajectory.csv and DIR/detections.csv. Throws p4::Error.
+  // Creates (truncates) DIR/trajectory.csv, DIR/detections.csv and DIR/events.jsonl. Throws
+  // p4::Error.
   RunWriter(const std::string& dir, const Rig& rig);
 
   void Write(const track::FrameSetResult& result);
+  void WriteEvent(const game::Event& event);
+  void WriteScore(const nlohmann::json& score);  // DIR/score.json
 
  private:
+  std::string dir_;
   std::vector<std::string> camera_names_;
-  std::ofstream trajectory_, detections_;
+  std::ofstream trajectory_, detections_, events_;
 };
 
 struct TrajectoryRow {

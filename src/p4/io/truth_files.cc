@@ -39,51 +39,6 @@ void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, i
   if (!out) throw Error(path + ": write failed");
 }
 
-std::string EventToJsonLine(const sim::TruthEvent& e) {
-  std::string line = fmt::format("{{\"t\":{:.6f},\"type\":\"{}\"", e.t, e.type);
-  if (e.player) line += fmt::format(",\"player\":\"{}\"", e.player);
-  if (e.side) line += fmt::format(",\"side\":\"{}\"", e.side);
-  if (e.position) {
-    line += fmt::format(",\"x\":{:.6f},\"y\":{:.6f},\"z\":{:.6f}", e.position->x(), e.position->y(),
-                        e.position->z());
-  }
-  if (e.confidence) line += fmt::format(",\"confidence\":{:.3f}", *e.confidence);
-  if (e.winner) {
-    line += fmt::format(",\"winner\":\"{}\"", e.winner);
-    if (!e.reason.empty()) line += fmt::format(",\"reason\":\"{}\"", e.reason);
-    line += fmt::format(",\"score\":[{},{}],\"games\":[{},{}]", e.score[0], e.score[1], e.games[0],
-                        e.games[1]);
-  }
-  return line + "}";
-}
-
-void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent>& events) {
-  std::ofstream out = OpenOut(path);
-  for (const auto& e : events) out << EventToJsonLine(e) << '\n';
-  if (!out) throw Error(path + ": write failed");
-}
-
-nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played) {
-  nlohmann::json j;
-  j["players"] = {"A", "B"};
-  j["best_of"] = score.best_of();
-  j["points_played"] = points_played;
-  j["score"] = score.points();
-  j["games"] = score.games();
-  j["finished_games"] = score.finished_games();
-  j["match_over"] = score.match_over();
-  j["winner"] =
-      score.match_over() ? nlohmann::json(std::string(1, score.match_winner())) : nlohmann::json();
-  j["next_server"] = std::string(1, score.Server());
-  return j;
-}
-
-void WriteJson(const std::string& path, const nlohmann::json& json) {
-  std::ofstream out = OpenOut(path);
-  out << json.dump(2) << '\n';
-  if (!out) throw Error(path + ": write failed");
-}
-
 void WriteVisibilityCsv(const std::string& path, const Rig& rig,
                         const std::vector<std::vector<float>>& visibility, int fps) {
   std::ofstream out = OpenOut(path);

@@ -8,6 +8,7 @@
 
 #include "p4/game/match_score.h"
 #include "p4/geometry/rig.h"
+#include "p4/io/event_files.h"
 #include "p4/sim/match.h"
 #include "p4/sim/scene.h"
 
@@ -17,13 +18,6 @@ namespace p4 {
 // Rows where the ball is not in the scene have in_play = 0 and empty state fields.
 void WriteTruthCsv(const std::string& path, const sim::Trajectory& trajectory, int fps,
                    int64_t frames);
-
-// One JSON object on one line, keys in DESIGN.md's order, numbers to the microsecond/micrometre.
-std::string EventToJsonLine(const sim::TruthEvent& event);
-void WriteEventsJsonl(const std::string& path, const std::vector<sim::TruthEvent>& events);
-
-nlohmann::json ScoreToJson(const game::MatchScore& score, int points_played);
-void WriteJson(const std::string& path, const nlohmann::json& json);
 
 // truth_visibility.csv: t and, per camera (named by the rig), the share of the ball that camera
 // sees in that frame (0: not in the picture or hidden; 1: fully seen).

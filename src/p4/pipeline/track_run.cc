@@ -6,23 +6,39 @@
 #include <filesystem>
 
 #include "p4/core/error.h"
+#include "p4/io/event_files.h"
 #include "p4/io/run_files.h"
 #include "p4/pipeline/frame_set_reader.h"
 
 namespace p4 {
 
+bool GameOptions::IsValid(std::string* error) const {
+  if (!detector.IsValid(error) || !referee.IsValid(error)) return false;
+  for (const auto& name : players) {
+    if (name.empty()) {
+      *error = "player names must not be empty";
+      return false;
+    }
+  }
+  return true;
+}
+
 std::string TrackRunSummary::Report() const {
-  return fmt::format(
+  std::string report = fmt::format(
       "{} frame sets ({:.2f} s of video) in {:.2f} s: {} measurements ({:.1f}% of frame sets, {} "
       "from >= 2 cameras), {:.0f} measurements per second, ROI hit rate {:.1f}%",
       frame_sets, video_seconds, wall_seconds, measured,
       frame_sets ? 100.0 * measured / frame_sets : 0.0, multi_view, measurements_per_second(),
       roi_searches ? 100.0 * roi_hits / roi_searches : 0.0);
+  if (!score.empty()) {
+    report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
+  }
+  return report;
 }
 
 TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classes,
                             const std::vector<std::string>& sources, const std::string& out_dir,
-                            const track::FrameSetOptions& options,
+                            const track::FrameSetOptions& options, const GameOptions& game,
                             const std::function<void(int64_t)>& progress) {
   if (static_cast<int>(sources.size()) != rig.size()) {
     throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
@@ -30,6 +46,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   }
   std::string why;
   if (!options.IsValid(&why)) throw Error("tracking options: " + why);
+  if (!game.IsValid(&why)) throw Error("game options: " + why);
   FrameSetReader reader(sources);
   for (int i = 0; i < reader.size(); ++i) {
     const VideoInfo& info = reader.info(i);
@@ -44,8 +61,32 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   if (ec) throw Error(out_dir + ": cannot create the folder (" + ec.message() + ")");
   RunWriter writer(out_dir, rig);
   track::FrameSetTracker tracker(rig, classes, options);
+  game::EventDetector detector(game.detector);
+  game::Referee referee(game.referee);
 
   TrackRunSummary summary;
+  // Detected events go to the file and the referee; the referee's (serve, let, point, game,
+  // match) to the file, and every point rewrites score.json.
+  const auto publish = [&](const std::vector<game::Event>& events) {
+    for (const game::Event& e : events) {
+      writer.WriteEvent(e);
+      summary.bounces += e.type == "bounce";
+      summary.hits += e.type == "hit";
+      std::vector<game::Event> decided = referee.OnEvent(e);
+      for (const game::Event& r : decided) writer.WriteEvent(r);
+      if (!decided.empty()) {
+        writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
+      }
+    }
+  };
+  const auto tick = [&](double t, bool seen) {
+    const std::vector<game::Event> decided = referee.OnTime(t, seen);
+    for (const game::Event& r : decided) writer.WriteEvent(r);
+    if (!decided.empty()) {
+      writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
+    }
+  };
+  if (game.enabled) writer.WriteScore(ScoreToJson(referee.score(), 0, game.players));
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   FrameSet set;
@@ -57,6 +98,11 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     last_t = set.t;
     const track::FrameSetResult result = tracker.Process(set.t, set.images);
     writer.Write(result);
+    if (game.enabled) {
+      const double t = ToSeconds(set.t);
+      if (result.measurement) publish(detector.Push(t, result.measurement->position));
+      tick(t, result.measurement.has_value());
+    }
     ++summary.frame_sets;
     if (result.measurement) {
       ++summary.measured;
@@ -73,6 +119,15 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       last_progress = now;
       progress(summary.frame_sets);
     }
+  }
+  if (game.enabled) {
+    publish(detector.Flush());
+    tick(ToSeconds(last_t), false);
+    const auto& score = referee.score();
+    summary.points = referee.points_played();
+    summary.score = fmt::format("games {}-{}, points {}-{}", score.games()[0], score.games()[1],
+                                score.points()[0], score.points()[1]);
+    writer.WriteScore(ScoreToJson(score, referee.points_played(), game.players));
   }
   summary.sources_ended_with_error = reader.ended_with_error();
   summary.video_seconds = first_t ? ToSeconds(last_t - *first_t) : 0.0;

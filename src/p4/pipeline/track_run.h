@@ -3,15 +3,28 @@
 // files and clocks.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "p4/game/event_detector.h"
+#include "p4/game/referee.h"
 #include "p4/geometry/rig.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/frame_set_tracker.h"
 
 namespace p4 {
+
+// The game layer of a run (paper §4): events from the track and the referee's score.
+struct GameOptions {
+  bool enabled = true;
+  game::EventDetectorOptions detector;
+  game::RefereeOptions referee;
+  std::array<std::string, 2> players{"A", "B"};  // names of A (x < 0) and B (x > 0)
+
+  bool IsValid(std::string* error) const;
+};
 
 struct TrackRunSummary {
   int64_t frame_sets = 0;
@@ -23,6 +36,9 @@ struct TrackRunSummary {
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
   std::vector<std::string> sources_ended_with_error;  // live sources that failed mid-run
+  int64_t bounces = 0, hits = 0, points = 0;
+  std::string score;  // e.g. "games 1-0, points 3-5"
+
   double measurements_per_second() const {
     return wall_seconds > 0 ? measured / wall_seconds : 0.0;
   }
@@ -34,7 +50,7 @@ struct TrackRunSummary {
 // field at fault.
 TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classes,
                             const std::vector<std::string>& sources, const std::string& out_dir,
-                            const track::FrameSetOptions& options,
+                            const track::FrameSetOptions& options, const GameOptions& game,
                             const std::function<void(int64_t)>& progress);
 
 }  // namespace p4
