@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package P4 needs to build, test and run. Idempotent: packages that are
-# already installed are left alone, so a second run takes seconds.
-#   bash scripts/setup.sh            # build + test dependencies
+# Installs every Debian 12 package P4 needs to build, test and run, and the web UI's npm packages
+# (three.js; playwright-core for the browser tests). Idempotent: what is installed is left alone,
+# so a second run takes seconds.
+#   bash scripts/setup.sh            # build + run (the web UI included)
+#   bash scripts/setup.sh --tests    # and Chromium for the browser tests
 set -euo pipefail
+cd "$(dirname "$0")/.."
+with_tests=0
+[ "${1:-}" = "--tests" ] && with_tests=1
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config git
@@ -13,6 +18,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   rtsp-server-perl  # a real RTSP server for the network-camera test
 )
+# Node.js and npm for the web UI's three.js: Debian's, unless the machine has a Node.js already.
+if ! command -v node > /dev/null || ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
+if [ "$with_tests" -eq 1 ]; then packages+=(chromium); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -23,12 +31,17 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages already installed"
-  exit 0
+else
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  echo "setup: installing ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -q
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-echo "setup: installing ${missing[*]}"
-"${sudo_cmd[@]}" apt-get update -q
-DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The web UI's packages, exactly as package-lock.json pins them (again only when it changed).
+if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then
+  echo "setup: npm ci in web/"
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
+fi
 echo "setup: done"

@@ -3,6 +3,6 @@
 # end-to-end tests read ../shared/data in place).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh --tests
 bash scripts/build.sh
 ctest --preset release

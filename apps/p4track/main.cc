@@ -21,6 +21,7 @@ int Run(int argc, char** argv) {
       {"track", p4::app::AddTrackCommand(app)},
       {"eval", p4::app::AddEvalCommand(app)},
       {"calibrate", p4::app::AddCalibrateCommand(app)},
+      {"replay", p4::app::AddReplayCommand(app)},
   };
   try {
     app.parse(argc, argv);

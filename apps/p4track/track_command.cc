@@ -10,6 +10,8 @@
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
 #include "p4/pipeline/track_run.h"
+#include "p4/server/live_hub.h"
+#include "web_ui.h"
 
 namespace p4::app {
 namespace {
@@ -24,6 +26,8 @@ struct TrackArgs {
   std::string first_server = "A";
   int best_of = 5;
   bool no_referee = false;
+  bool ui = false, realtime = false;
+  WebFlags web;
 };
 
 int Run(const TrackArgs& a) {
@@ -46,13 +50,32 @@ int Run(const TrackArgs& a) {
   game.referee.best_of = a.best_of;
   game.referee.first_server = a.first_server == "B" ? 'B' : 'A';
   game.players = {a.players[0], a.players[1]};
+  // The live view: its own threads; the tracking loop only hands it each frame set.
+  std::unique_ptr<server::LiveHub> hub;
+  std::unique_ptr<server::WebServer> web;
+  RunExtras extras;
+  extras.realtime = a.realtime;
+  if (a.ui) {
+    hub = std::make_unique<server::LiveHub>(rig, game.players, server::LiveOptions{});
+    web = std::make_unique<server::WebServer>(a.web.Options());
+    web->ServeLive(hub.get());
+    StartAndAnnounce(web.get(), a.web, "live view");
+    extras.live = hub.get();
+  }
   spdlog::info("tracking {} source(s) with {} ({} camera(s)) into {}", a.sources.size(), a.rig,
                rig.size(), a.out);
-  const TrackRunSummary summary =
-      RunTracking(rig, classes, a.sources, a.out, options, game,
-                  [](int64_t n) { spdlog::info("tracking: {} frame sets", n); });
+  const TrackRunSummary summary = RunTracking(
+      rig, classes, a.sources, a.out, options, game,
+      [](int64_t n) { spdlog::info("tracking: {} frame sets", n); }, extras);
   for (const auto& e : summary.sources_ended_with_error) spdlog::warn("source ended: {}", e);
   spdlog::info("{}", summary.Report());
+  if (web) {
+    spdlog::info(
+        "the sources have ended; the live view stays at {} until Ctrl-C (replay the run "
+        "with: p4track replay {})",
+        web->Url(), a.out);
+    WaitForInterrupt();
+  }
   return 0;
 }
 
@@ -98,6 +121,12 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->check(CLI::IsMember({1, 3, 5, 7}))
       ->capture_default_str();
   cmd->add_flag("--no-referee", args->no_referee, "Track only: no events, no score");
+  cmd->add_flag("--ui", args->ui,
+                "Live view in the browser: every camera with its ROI, candidates and epipolar "
+                "lines, the 3D table and ball, the score");
+  cmd->add_flag("--realtime", args->realtime,
+                "Pace video files at their own frame rate (a recording shown as live)");
+  args->web.Add(cmd);
   return [args]() { return Run(*args); };
 }
 

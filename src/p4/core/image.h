@@ -64,3 +64,12 @@ class I420Image {
 };
 
 }  // namespace p4
+
+namespace p4 {
+
+// The view scaled down by an integer factor (nearest sample) into I420, at
+// (width / factor, height / factor) rounded down to even: cheap pictures for a live view.
+// Precondition: factor >= 1 and the result at least 2x2.
+void DownsampleToI420(const ImageView& view, int factor, I420Image* out);
+
+}  // namespace p4

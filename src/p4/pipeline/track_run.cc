@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <thread>
 
 #include "p4/core/error.h"
 #include "p4/io/event_files.h"
@@ -33,13 +34,17 @@ std::string TrackRunSummary::Report() const {
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
+  if (worst_lag_ms > 0.0) {
+    report += fmt::format("; real time kept: worst lag {:.1f} ms, {} frame sets late", worst_lag_ms,
+                          late);
+  }
   return report;
 }
 
 TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classes,
                             const std::vector<std::string>& sources, const std::string& out_dir,
                             const track::FrameSetOptions& options, const GameOptions& game,
-                            const std::function<void(int64_t)>& progress) {
+                            const std::function<void(int64_t)>& progress, const RunExtras& extras) {
   if (static_cast<int>(sources.size()) != rig.size()) {
     throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
                             sources.size()));
@@ -67,13 +72,15 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   TrackRunSummary summary;
   // Detected events go to the file and the referee; the referee's (serve, let, point, game,
   // match) to the file, and every point rewrites score.json.
+  std::vector<game::Event> published;  // this frame set's, for the live view
   const auto publish = [&](const std::vector<game::Event>& events) {
     for (const game::Event& e : events) {
       writer.WriteEvent(e);
+      published.push_back(e);
       summary.bounces += e.type == "bounce";
       summary.hits += e.type == "hit";
       std::vector<game::Event> decided = referee.OnEvent(e);
-      for (const game::Event& r : decided) writer.WriteEvent(r);
+      for (const game::Event& r : decided) writer.WriteEvent(r), published.push_back(r);
       if (!decided.empty()) {
         writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
       }
@@ -81,7 +88,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   };
   const auto tick = [&](double t, bool seen) {
     const std::vector<game::Event> decided = referee.OnTime(t, seen);
-    for (const game::Event& r : decided) writer.WriteEvent(r);
+    for (const game::Event& r : decided) writer.WriteEvent(r), published.push_back(r);
     if (!decided.empty()) {
       writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
     }
@@ -91,17 +98,39 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   auto last_progress = start;
   FrameSet set;
   std::optional<TimeNs> first_t;
+  auto paced_from = start;
   TimeNs last_t = 0;
   while (reader.Next(&set)) {
-    if (!first_t) first_t = set.t;
+    if (!first_t) {
+      first_t = set.t;
+      paced_from = std::chrono::steady_clock::now();  // the clock starts with the first picture
+    }
     if (set.t <= last_t && summary.frame_sets > 0) continue;  // time must increase
+    const TimeNs last_t_before = last_t;
     last_t = set.t;
+    if (extras.realtime) {
+      // Recorded video at its own pace: frame set t is processed at start + (t - first t).
+      std::this_thread::sleep_until(paced_from + std::chrono::nanoseconds(set.t - *first_t));
+    }
     const track::FrameSetResult result = tracker.Process(set.t, set.images);
     writer.Write(result);
+    published.clear();
     if (game.enabled) {
       const double t = ToSeconds(set.t);
       if (result.measurement) publish(detector.Push(t, result.measurement->position));
       tick(t, result.measurement.has_value());
+    }
+    if (extras.live) {
+      extras.live->OnFrameSet(set, result, published, game.enabled ? &referee.score() : nullptr);
+    }
+    if (extras.realtime) {
+      const auto due = paced_from + std::chrono::nanoseconds(set.t - *first_t);
+      const double lag_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - due).count();
+      summary.worst_lag_ms = std::max(summary.worst_lag_ms, lag_ms);
+      // A live camera queues a few frames (V4L2 and network sources hold 3-4): a frame set
+      // finished within 3 frame periods of its time lost nothing.
+      if (summary.frame_sets > 0 && lag_ms > 3e3 * ToSeconds(set.t - last_t_before)) ++summary.late;
     }
     ++summary.frame_sets;
     if (result.measurement) {

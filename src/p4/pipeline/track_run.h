@@ -11,6 +11,7 @@
 #include "p4/game/event_detector.h"
 #include "p4/game/referee.h"
 #include "p4/geometry/rig.h"
+#include "p4/pipeline/live_sink.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/frame_set_tracker.h"
 
@@ -26,6 +27,13 @@ struct GameOptions {
   bool IsValid(std::string* error) const;
 };
 
+// Optional parts of a run: a live view, and pacing recorded files at their own frame rate (a
+// replay "as live"; live sources are paced by themselves).
+struct RunExtras {
+  LiveSink* live = nullptr;
+  bool realtime = false;
+};
+
 struct TrackRunSummary {
   int64_t frame_sets = 0;
   int64_t measured = 0;    // time-stamps with a 3D measurement
@@ -37,6 +45,9 @@ struct TrackRunSummary {
   double wall_seconds = 0.0;
   std::vector<std::string> sources_ended_with_error;  // live sources that failed mid-run
   int64_t bounces = 0, hits = 0, points = 0;
+  // --realtime only: how far processing fell behind the video's own clock.
+  double worst_lag_ms = 0.0;
+  int64_t late = 0;  // frame sets finished more than 3 frame periods behind
   std::string score;  // e.g. "games 1-0, points 3-5"
 
   double measurements_per_second() const {
@@ -51,6 +62,7 @@ struct TrackRunSummary {
 TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classes,
                             const std::vector<std::string>& sources, const std::string& out_dir,
                             const track::FrameSetOptions& options, const GameOptions& game,
-                            const std::function<void(int64_t)>& progress);
+                            const std::function<void(int64_t)>& progress,
+                            const RunExtras& extras = {});
 
 }  // namespace p4

@@ -1,0 +1,27 @@
+// The web UI's parts shared by `track --ui` and `replay`: the server's flags, the warning for a
+// non-loopback address, and serving until Ctrl-C.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "p4/server/web_server.h"
+
+namespace p4::app {
+
+struct WebFlags {
+  std::string bind = "127.0.0.1";
+  int port = 8080;
+  std::string web_dir = P4_WEB_DIR;
+
+  void Add(CLI::App* cmd);
+  server::WebServerOptions Options() const;
+};
+
+// Starts the server and logs its address (and a warning when it is reachable from the network).
+void StartAndAnnounce(server::WebServer* server, const WebFlags& flags, const std::string& what);
+
+// Blocks until SIGINT or SIGTERM.
+void WaitForInterrupt();
+
+}  // namespace p4::app

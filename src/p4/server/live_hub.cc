@@ -1,0 +1,224 @@
+#include "p4/server/live_hub.h"
+
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "p4/core/table.h"
+#include "p4/io/event_files.h"
+#include "p4/server/web_server.h"
+
+namespace p4::server {
+
+bool LiveOptions::IsValid(std::string* error) const {
+  if (!(state_hz > 0.0) || !(frame_hz > 0.0) || jpeg_width < 64 || jpeg_quality < 10 ||
+      jpeg_quality > 100 || trail < 0 || events < 0) {
+    *error = "live view: rates must be positive, jpeg_width >= 64, jpeg_quality 10-100";
+    return false;
+  }
+  return true;
+}
+
+LiveHub::LiveHub(const Rig& rig, const std::array<std::string, 2>& players,
+                 const LiveOptions& options)
+    : rig_(rig), players_(players), options_(options) {
+  nlohmann::ordered_json config;
+  config["players"] = players;
+  config["table"] = {{"length", table::kLength},        {"width", table::kWidth},
+                     {"net_height", table::kNetHeight}, {"net_half_length", table::kNetHalfLength},
+                     {"floor_z", table::kFloorZ},       {"ball_radius", table::kBallRadius}};
+  for (const Camera& c : rig.cameras) {
+    const Eigen::Vector3d centre = c.Center();
+    config["cameras"].push_back({{"name", c.name},
+                                 {"width", c.width},
+                                 {"height", c.height},
+                                 {"centre", {centre.x(), centre.y(), centre.z()}}});
+  }
+  config_ = config.dump();
+  jpeg_.resize(rig.size());
+  pending_.resize(rig.size());
+  has_pending_.assign(rig.size(), false);
+  encoder_ = std::thread([this] { EncodeLoop(); });
+}
+
+LiveHub::~LiveHub() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  encoder_.join();
+}
+
+std::shared_ptr<const std::string> LiveHub::State() const {
+  std::lock_guard lock(mutex_);
+  return state_;
+}
+
+std::shared_ptr<const std::string> LiveHub::Jpeg(int camera) const {
+  std::lock_guard lock(mutex_);
+  if (camera < 0 || camera >= static_cast<int>(jpeg_.size())) return nullptr;
+  return jpeg_[camera];
+}
+
+int64_t LiveHub::frames_offered() const { return offered_; }
+
+int64_t LiveHub::frames_dropped() const { return dropped_; }
+
+void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& result,
+                         std::span<const game::Event> events, const game::MatchScore* score) {
+  if (result.state) {
+    trail_.push_back(
+        {result.state->position.x(), result.state->position.y(), result.state->position.z()});
+    while (static_cast<int>(trail_.size()) > options_.trail) trail_.pop_front();
+  }
+  for (const game::Event& e : events) {
+    recent_events_.push_back(EventToJsonLine(e));
+    while (static_cast<int>(recent_events_.size()) > options_.events) recent_events_.pop_front();
+  }
+  // Pictures: at most frame_hz, and only when the encoder is free (else this one is dropped).
+  if (set.t - last_frame_t_ >= static_cast<TimeNs>(1e9 / options_.frame_hz)) {
+    last_frame_t_ = set.t;  // this slot is used or dropped, not retried
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (lock.owns_lock() && !encoding_) {
+      for (int c = 0; c < rig_.size() && c < static_cast<int>(set.images.size()); ++c) {
+        if (!set.images[c]) continue;
+        const int factor =
+            std::max(1, (set.images[c]->width + options_.jpeg_width - 1) / options_.jpeg_width);
+        DownsampleToI420(*set.images[c], factor, &pending_[c]);
+        has_pending_[c] = true;
+        ++offered_;
+      }
+      lock.unlock();
+      wake_.notify_one();
+    } else {
+      ++dropped_;
+    }
+  }
+  if (set.t - last_state_t_ < static_cast<TimeNs>(1e9 / options_.state_hz) && events.empty()) {
+    return;
+  }
+  const TimeNs skipped_state_t = last_state_t_;
+  last_state_t_ = set.t;
+  nlohmann::json state;
+  state["t"] = ToSeconds(set.t);
+  if (result.state) {
+    const auto& s = *result.state;
+    state["ball"] = {{"x", s.position.x()},
+                     {"y", s.position.y()},
+                     {"z", s.position.z()},
+                     {"speed", s.velocity.norm()},
+                     {"measured", s.measured}};
+  } else {
+    state["ball"] = nullptr;
+  }
+  state["trail"] = nlohmann::json::array();
+  for (const auto& p : trail_) state["trail"].push_back(p);
+  // Per camera: its search window, its candidates, and the epipolar lines of the ball as the
+  // other cameras saw it (paper Figure 6: red ROI, yellow lines).
+  std::vector<std::vector<const track::Detection*>> accepted(rig_.size());
+  for (const auto& d : result.detections) {
+    if (d.accepted) accepted[d.camera].push_back(&d);
+  }
+  for (int c = 0; c < rig_.size(); ++c) {
+    nlohmann::json cam;
+    const auto& search =
+        c < static_cast<int>(result.searches.size()) ? result.searches[c] : track::CameraSearch{};
+    cam["present"] = search.present;
+    if (!search.roi.empty()) {
+      cam["roi"] = {search.roi.x0, search.roi.y0, search.roi.x1, search.roi.y1};
+    } else {
+      cam["roi"] = nullptr;
+    }
+    cam["fell_back"] = search.fell_back;
+    cam["detections"] = nlohmann::json::array();
+    for (const auto& d : result.detections) {
+      if (d.camera != c) continue;
+      cam["detections"].push_back({{"u", std::round(d.pixel.x() * 10) / 10},
+                                   {"v", std::round(d.pixel.y() * 10) / 10},
+                                   {"d", std::round(d.diameter_px * 10) / 10},
+                                   {"accepted", d.accepted}});
+    }
+    cam["epipolar"] = nlohmann::json::array();
+    for (int o = 0; o < rig_.size(); ++o) {
+      if (o == c) continue;
+      for (const track::Detection* d : accepted[o]) {
+        nlohmann::json line = nlohmann::json::array();
+        // The ray of the other camera's ball, 0.3-30 m deep, even in inverse depth; points a
+        // little beyond the picture are kept so the drawn line reaches its edges.
+        const Camera& from = rig_.cameras[o];
+        const Camera& to = rig_.cameras[c];
+        const Eigen::Vector3d origin = from.Center(), ray = from.RayDirection(d->pixel);
+        for (int k = 0; k < 40; ++k) {
+          const double s = k / 39.0;
+          const auto p = to.Project(origin + ray / ((1.0 - s) / 0.3 + s / 30.0));
+          if (!p || p->x() < -to.width || p->x() > 2 * to.width || p->y() < -to.height ||
+              p->y() > 2 * to.height) {
+            continue;
+          }
+          line.push_back({std::round(p->x() * 10) / 10, std::round(p->y() * 10) / 10});
+        }
+        cam["epipolar"].push_back(line);
+      }
+    }
+    state["cameras"].push_back(cam);
+  }
+  if (score) {
+    state["score"] = ScoreToJson(*score, 0, players_);
+  } else {
+    state["score"] = nullptr;
+  }
+  state["events"] = nlohmann::json::array();
+  for (const auto& line : recent_events_) state["events"].push_back(nlohmann::json::parse(line));
+  auto text = std::make_shared<const std::string>(state.dump());
+  // Never wait for a reader: the UI's threads run at the lowest priority and one holding the lock
+  // may not get the CPU for a while. Busy: this state is dropped, the next frame set publishes.
+  std::unique_lock lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) {
+    last_state_t_ = skipped_state_t;
+    return;
+  }
+  state_ = std::move(text);
+}
+
+void LiveHub::EncodeLoop() {
+  YieldToTracking();
+  std::vector<I420Image> work(rig_.size());
+  std::vector<bool> todo(rig_.size());
+  std::vector<uint8_t> buffer;
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] {
+        return stop_ ||
+               std::find(has_pending_.begin(), has_pending_.end(), true) != has_pending_.end();
+      });
+      if (stop_) return;
+      for (int c = 0; c < rig_.size(); ++c) {
+        todo[c] = has_pending_[c];
+        if (todo[c]) std::swap(work[c], pending_[c]);
+        has_pending_[c] = false;
+      }
+      encoding_ = true;
+    }
+    for (int c = 0; c < rig_.size(); ++c) {
+      if (!todo[c]) continue;
+      const I420Image& f = work[c];
+      const cv::Mat yuv(f.height() * 3 / 2, f.width(), CV_8UC1, const_cast<uint8_t*>(f.y()));
+      cv::Mat bgr;
+      cv::cvtColor(yuv, bgr, cv::COLOR_YUV2BGR_I420);
+      cv::imencode(".jpg", bgr, buffer, {cv::IMWRITE_JPEG_QUALITY, options_.jpeg_quality});
+      auto jpeg = std::make_shared<const std::string>(buffer.begin(), buffer.end());
+      std::lock_guard lock(mutex_);
+      jpeg_[c] = std::move(jpeg);
+    }
+    std::lock_guard lock(mutex_);
+    encoding_ = false;
+  }
+}
+
+}  // namespace p4::server

@@ -1,0 +1,99 @@
+#include "p4/server/live_hub.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+
+#include "p4/sim/camera_layout.h"
+
+namespace p4::server {
+namespace {
+
+// One frame set of a 2-camera rig with the ball seen by both: the state names each camera's ROI
+// and candidates, and the epipolar line of the ball seen by camera 0 passes through the ball in
+// camera 1; the pictures are encoded at the reduced size.
+TEST(LiveHub, PublishesStateAndPictures) {
+  const Rig rig = sim::ClubRig(2, 1280, 720, false);
+  LiveOptions options;
+  LiveHub hub(rig, {"Ana", "Ben"}, options);
+  const Eigen::Vector3d ball(0.3, 0.1, 0.25);
+  I420Image image(1280, 720);
+  std::fill(image.bytes().begin(), image.bytes().end(), 128);
+  FrameSet set;
+  set.t = FromSeconds(1.0);
+  set.images = {image.View(), image.View()};
+  track::FrameSetResult result;
+  result.t = set.t;
+  result.searches.resize(2);
+  for (int c = 0; c < 2; ++c) {
+    const Eigen::Vector2d px = rig.cameras[c].Project(ball).value();
+    result.detections.push_back({c, px, 10.0, 80, true});
+    result.searches[c].present = true;
+    result.searches[c].roi = segment::Roi::Around(px.x(), px.y(), 40, 40, 1280, 720);
+  }
+  track::TrackedState state;
+  state.position = ball;
+  state.velocity = Eigen::Vector3d(3.0, 0.0, 4.0);
+  state.measured = true;
+  result.state = state;
+  hub.OnFrameSet(set, result, {}, nullptr);
+
+  const auto text = hub.State();
+  ASSERT_TRUE(text);
+  const auto json = nlohmann::json::parse(*text);
+  EXPECT_NEAR(json["ball"]["speed"].get<double>(), 5.0, 1e-9);
+  ASSERT_EQ(json["cameras"].size(), 2u);
+  EXPECT_EQ(json["cameras"][1]["roi"].size(), 4u);
+  EXPECT_TRUE(json["cameras"][1]["detections"][0]["accepted"].get<bool>());
+  // The epipolar line in camera 1 (a polyline) comes within a pixel of the ball there.
+  const Eigen::Vector2d in1 = rig.cameras[1].Project(ball).value();
+  double nearest = 1e9;
+  const auto& line = json["cameras"][1]["epipolar"][0];
+  ASSERT_GE(line.size(), 2u);
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Eigen::Vector2d a(line[k][0].get<double>(), line[k][1].get<double>());
+    const Eigen::Vector2d b(line[k + 1][0].get<double>(), line[k + 1][1].get<double>());
+    const double s = std::clamp((in1 - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (a + s * (b - a) - in1).norm());
+  }
+  EXPECT_LT(nearest, 1.0);
+  EXPECT_NE(hub.Config().find("\"Ben\""), std::string::npos);
+
+  // The encoder thread makes a 640x360 JPEG of each camera.
+  std::shared_ptr<const std::string> jpeg;
+  for (int i = 0; i < 200 && !(jpeg = hub.Jpeg(1)); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(jpeg);
+  const cv::Mat decoded =
+      cv::imdecode(std::vector<uint8_t>(jpeg->begin(), jpeg->end()), cv::IMREAD_COLOR);
+  EXPECT_EQ(decoded.cols, 640);
+  EXPECT_EQ(decoded.rows, 360);
+  EXPECT_EQ(hub.frames_offered(), 2);
+}
+
+// Frame sets far faster than the picture rate: the hub takes at most frame_hz pictures a second
+// of video time and never blocks the caller.
+TEST(LiveHub, TakesPicturesAtItsOwnRate) {
+  const Rig rig = sim::ClubRig(1, 1280, 720, false);
+  LiveOptions options;
+  options.frame_hz = 10.0;
+  LiveHub hub(rig, {"A", "B"}, options);
+  I420Image image(1280, 720);
+  FrameSet set;
+  set.images = {image.View()};
+  track::FrameSetResult result;
+  result.searches.resize(1);
+  for (int i = 0; i < 240; ++i) {  // 2 s at 120 fps
+    set.t = FromSeconds(i / 120.0);
+    hub.OnFrameSet(set, result, {}, nullptr);
+  }
+  EXPECT_LE(hub.frames_offered() + hub.frames_dropped(), 21);
+  EXPECT_GE(hub.frames_offered(), 1);
+}
+
+}  // namespace
+}  // namespace p4::server

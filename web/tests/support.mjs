@@ -1,0 +1,64 @@
+// Shared by the browser tests: p4track started as a user would, Debian's Chromium driven by
+// playwright-core, screenshots kept as test artefacts.
+import { spawn, execFileSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { chromium } from 'playwright-core';
+
+export const P4TRACK = process.env.P4TRACK;
+export const ARTIFACTS = process.env.P4_ARTIFACTS || join(tmpdir(), 'p4-browser-artifacts');
+mkdirSync(ARTIFACTS, { recursive: true });
+
+export function check(condition, message) {
+  if (!condition) throw new Error(`check failed: ${message}`);
+  console.log(`ok - ${message}`);
+}
+
+export function tempDir(name) { return mkdtempSync(join(tmpdir(), `p4-${name}-`)); }
+export function removeDir(dir) { rmSync(dir, { recursive: true, force: true }); }
+
+// Runs p4track to completion (simulate, track without UI).
+export function p4track(args) {
+  return execFileSync(P4TRACK, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+}
+
+// Starts p4track with a web UI on a free port; resolves with the process, its URL and its log.
+export function startServing(args, marker) {
+  const proc = spawn(P4TRACK, [...args, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  const log = [];
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`no URL from p4track: ${log.join('')}`)), 20000);
+    const onData = chunk => {
+      log.push(chunk.toString());
+      const m = log.join('').match(new RegExp(`${marker}.*?(http://127\\.0\\.0\\.1:\\d+/)`));
+      if (m) { clearTimeout(timer); resolve({ proc, url: m[1], log }); }
+    };
+    proc.stdout.on('data', onData);
+    proc.stderr.on('data', onData);
+    proc.on('exit', code => reject(new Error(`p4track exited (${code}): ${log.join('')}`)));
+  });
+}
+
+export async function stop(proc) {
+  if (proc.exitCode !== null) return proc.exitCode;
+  const done = new Promise(r => proc.once('exit', code => r(code)));
+  proc.kill('SIGINT');
+  return done;
+}
+
+export async function launchBrowser() {
+  return chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+}
+
+// A page that fails the test on any script error.
+export async function openPage(browser, url, errors) {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  page.on('pageerror', e => errors.push(e.message));
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(url);
+  return page;
+}
