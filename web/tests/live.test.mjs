@@ -1,6 +1,6 @@
 // The live view in real headless Chromium while a simulated match is tracked: a tile per camera
-// with its picture and overlays, the 3D canvas, the score; and 20 clients polling as fast as the
-// page does leave the tracker's measurement rate as it was (same run, same machine: a ratio).
+// with its picture and overlays, the 3D canvas, the score; and with 20 clients polling as fast
+// as the page does, tracking still keeps real time (no frame set later than 3 frame periods).
 import os from 'node:os';
 import { join } from 'node:path';
 import { check, tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, ARTIFACTS } from './support.mjs';
