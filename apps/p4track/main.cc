@@ -22,6 +22,7 @@ int Run(int argc, char** argv) {
       {"eval", p4::app::AddEvalCommand(app)},
       {"calibrate", p4::app::AddCalibrateCommand(app)},
       {"replay", p4::app::AddReplayCommand(app)},
+      {"bench", p4::app::AddBenchCommand(app)},
   };
   try {
     app.parse(argc, argv);

@@ -12,6 +12,7 @@ namespace {
 // 10 truth rows at 100 Hz: the ball in play for rows 2..9, seen by every camera.
 std::vector<TruthRow> Truth() {
   std::vector<TruthRow> truth;
+  truth.reserve(10);
   for (int i = 0; i < 10; ++i)
     truth.push_back({0.01 * i, Eigen::Vector3d(0.1 * i, 0, 0.3), i >= 2});
   return truth;

@@ -138,7 +138,7 @@ TEST(EventDetector, FindsExactlyTheBouncesOfTheRealFlights) {
 
 // Named cases: a ball into the net, a ball that flies past the table's end (out), a drop on
 // the floor.
-sim::Trajectory Ballistic(Eigen::Vector3d p, Eigen::Vector3d v, double t1) {
+sim::Trajectory Ballistic(const Eigen::Vector3d& p, const Eigen::Vector3d& v, double t1) {
   sim::Trajectory trajectory;
   for (double t = 0.0; t <= t1; t += 0.001) {
     sim::BallState s;

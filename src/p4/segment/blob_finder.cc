@@ -125,36 +125,86 @@ int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi
   if (roi.empty()) return 0;
   const int n = roi.x1 - roi.x0;
   row_.resize(n);
+  // Chroma first (I420, NV12, stride 1): a 2x2 block's chroma is shared, so U and V are looked up
+  // once per block and luma only where the chroma can be the ball — the ball is small and most
+  // blocks are out at once. Same runs as the per-pixel path (tested).
+  const bool chroma_first =
+      options.chroma_first && options.stride == 1 &&
+      (image.format == PixelFormat::kI420 || image.format == PixelFormat::kNV12);
+  const int cx0 = roi.x0 >> 1, cx1 = (roi.x1 + 1) >> 1;
+  int chroma_row = -1;
   std::size_t previous_row_begin = 0, previous_row_end = 0;
   for (int y = roi.y0; y < roi.y1; ++y) {
-    switch (image.format) {
-      case PixelFormat::kI420:
-        ClassifyRow(I420Row{image.planes[0].Row(y), image.planes[1].Row(y >> 1),
-                            image.planes[2].Row(y >> 1)},
-                    lut, options.mask, roi.x0, roi.x1, options.stride, row_.data());
-        break;
-      case PixelFormat::kNV12:
-        ClassifyRow(Nv12Row{image.planes[0].Row(y), image.planes[1].Row(y >> 1)}, lut, options.mask,
-                    roi.x0, roi.x1, options.stride, row_.data());
-        break;
-      case PixelFormat::kYUYV:
-        ClassifyRow(YuyvRow{image.planes[0].Row(y)}, lut, options.mask, roi.x0, roi.x1,
-                    options.stride, row_.data());
-        break;
-    }
-    // Run-length encode the row and join runs that touch runs of the row above (8-connected).
     const std::size_t row_begin = runs_.size();
-    for (int i = 0; i < n;) {
-      if (!row_[i]) {
-        ++i;
-        continue;
+    if (chroma_first) {
+      if ((y >> 1) != chroma_row) {
+        chroma_row = y >> 1;
+        candidates_.clear();
+        if (image.format == PixelFormat::kI420) {
+          const uint8_t* u = image.planes[1].Row(chroma_row);
+          const uint8_t* v = image.planes[2].Row(chroma_row);
+          for (int cx = cx0; cx < cx1; ++cx) {
+            const uint32_t m = lut.u[u[cx]] & lut.v[v[cx]] & options.mask;
+            if (m) candidates_.push_back({cx, m});
+          }
+        } else {
+          const uint8_t* uv = image.planes[1].Row(chroma_row);
+          for (int cx = cx0; cx < cx1; ++cx) {
+            const uint32_t m = lut.u[uv[2 * cx]] & lut.v[uv[2 * cx + 1]] & options.mask;
+            if (m) candidates_.push_back({cx, m});
+          }
+        }
       }
-      int j = i + 1;
-      while (j < n && row_[j]) ++j;
-      const int index = static_cast<int>(runs_.size());
-      runs_.push_back({y, roi.x0 + i, roi.x0 + j, index});
-      i = j;
+      const uint8_t* luma = image.planes[0].Row(y);
+      int open = -1, end = -1;  // the run being built: [open, end)
+      for (const auto& [cx, m] : candidates_) {
+        for (int x = std::max(2 * cx, roi.x0); x < std::min(2 * cx + 2, roi.x1); ++x) {
+          if (!(lut.y[luma[x]] & m)) continue;
+          if (open >= 0 && x == end) {
+            ++end;
+            continue;
+          }
+          if (open >= 0) {
+            const int index = static_cast<int>(runs_.size());
+            runs_.push_back({y, open, end, index});
+          }
+          open = x, end = x + 1;
+        }
+      }
+      if (open >= 0) {
+        const int index = static_cast<int>(runs_.size());
+        runs_.push_back({y, open, end, index});
+      }
+    } else {
+      switch (image.format) {
+        case PixelFormat::kI420:
+          ClassifyRow(I420Row{image.planes[0].Row(y), image.planes[1].Row(y >> 1),
+                              image.planes[2].Row(y >> 1)},
+                      lut, options.mask, roi.x0, roi.x1, options.stride, row_.data());
+          break;
+        case PixelFormat::kNV12:
+          ClassifyRow(Nv12Row{image.planes[0].Row(y), image.planes[1].Row(y >> 1)}, lut,
+                      options.mask, roi.x0, roi.x1, options.stride, row_.data());
+          break;
+        case PixelFormat::kYUYV:
+          ClassifyRow(YuyvRow{image.planes[0].Row(y)}, lut, options.mask, roi.x0, roi.x1,
+                      options.stride, row_.data());
+          break;
+      }
+      // Run-length encode the row.
+      for (int i = 0; i < n;) {
+        if (!row_[i]) {
+          ++i;
+          continue;
+        }
+        int j = i + 1;
+        while (j < n && row_[j]) ++j;
+        const int index = static_cast<int>(runs_.size());
+        runs_.push_back({y, roi.x0 + i, roi.x0 + j, index});
+        i = j;
+      }
     }
+    // Join runs that touch runs of the row above (8-connected).
     std::size_t above = previous_row_begin;
     for (std::size_t r = row_begin; r < runs_.size(); ++r) {
       while (above < previous_row_end && runs_[above].x1 < runs_[r].x0) ++above;

@@ -57,6 +57,9 @@ struct SegmentOptions {
   int stride = 1;               // test every stride-th pixel of a row (1-4)
   int min_area = 3;             // smaller regions are dropped (pixels)
   int max_regions = 16;         // keep the largest ones
+  // I420 and NV12 at stride 1: classify each 2x2 block's chroma once, luma only where it can be
+  // the object (same result; false: every pixel's three look-ups, the reference path).
+  bool chroma_first = true;
 
   bool IsValid(std::string* error) const;
 };
@@ -74,6 +77,11 @@ class BlobFinder {
  private:
   std::vector<Run> runs_;
   std::vector<uint8_t> row_;  // classification of one row
+  struct Candidate {
+    int cx;
+    uint32_t mask;
+  };
+  std::vector<Candidate> candidates_;  // chroma samples of the current chroma row that may be in
   struct Accum {
     int64_t area;
     double sx, sy, sxx, syy, sxy;

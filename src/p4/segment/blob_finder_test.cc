@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <random>
+
 #include "p4/segment/test_images.h"
 
 namespace p4::segment {
@@ -187,6 +191,48 @@ TEST_F(BlobFinderTest, UShapeIsOneRegion) {
   ASSERT_EQ(Find(img.View()), 1);
   EXPECT_EQ(regions_[0].x0, 10);
   EXPECT_EQ(regions_[0].x1, 46);
+}
+
+// Chroma first gives exactly the per-pixel path's runs and regions, for I420 and NV12, whole
+// frames and windows at odd offsets, on noisy random blobs (many edges, many small regions).
+TEST_F(BlobFinderTest, ChromaFirstIsExactlyThePerPixelPath) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> pos(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int w = 96 + 2 * (trial % 5), h = 64 + 2 * (trial % 3);
+    std::vector<std::array<double, 3>> discs;
+    for (int k = 0; k < 12; ++k)
+      discs.push_back({pos(rng) * w, pos(rng) * h, 0.5 + 5.0 * pos(rng)});
+    I420Image img = Paint(w, h, [&](double x, double y) {
+      double a = 0.0;
+      for (const auto& d : discs) a = std::max(a, Disc(x, y, d[0], d[1], d[2]));
+      return a;
+    });
+    for (auto& b : img.bytes())
+      b = static_cast<uint8_t>(std::clamp(b + static_cast<int>(rng() % 21) - 10, 0, 255));
+    const Repacked r = Repack(img);
+    for (const ImageView& view : {img.View(), r.nv12}) {
+      for (const Roi& roi : {Roi{}, Roi{3, 5, w - 7, h - 4}, Roi{1, 0, 42, 31}}) {
+        options_.chroma_first = false;
+        const int reference = Find(view, roi);
+        const std::vector<segment::Run> runs = finder_.runs();
+        const std::vector<Region> expected = regions_;
+        options_.chroma_first = true;
+        ASSERT_EQ(Find(view, roi), reference);
+        ASSERT_EQ(finder_.runs().size(), runs.size());
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+          EXPECT_EQ(finder_.runs()[i].y, runs[i].y);
+          EXPECT_EQ(finder_.runs()[i].x0, runs[i].x0);
+          EXPECT_EQ(finder_.runs()[i].x1, runs[i].x1);
+        }
+        for (int k = 0; k < reference; ++k) {
+          EXPECT_EQ(regions_[k].area, expected[k].area);
+          EXPECT_DOUBLE_EQ(regions_[k].cx, expected[k].cx);
+          EXPECT_DOUBLE_EQ(regions_[k].minor_diameter, expected[k].minor_diameter);
+        }
+      }
+    }
+  }
 }
 
 TEST(SegmentOptions, Validation) {

@@ -1,14 +1,14 @@
 #include "p4/server/web_server.h"
 
 #include <httplib.h>
+#include <pthread.h>
+#include <sched.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-
-#include <pthread.h>
-#include <sched.h>
 
 #include "p4/core/error.h"
 
@@ -46,9 +46,7 @@ void YieldToTracking() {
   pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 bool WebServerOptions::IsValid(std::string* error) const {
   if (port < 0 || port > 65535) {
@@ -184,6 +182,10 @@ int WebServer::Start() {
   }
   port_ = port;
   thread_ = std::thread([this] { server_->listen_after_bind(); });
+  // Serving before returning: a stop() before the thread is listening would be lost.
+  for (int i = 0; i < 5000 && !server_->is_running(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   return port_;
 }
 

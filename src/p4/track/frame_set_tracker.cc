@@ -50,6 +50,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   result.t = t;
   const int n = rig_.size();
   result.searches.resize(n);
+  const TimeNs t0 = clock_ ? clock_() : 0;
   const auto prediction = tracker_.Predict(t);
   const std::optional<Eigen::Vector3d> predicted =
       prediction ? std::optional<Eigen::Vector3d>(prediction->first) : std::nullopt;
@@ -106,6 +107,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   }
 
   for (int c = 0; c < n; ++c) AgeStaticSpots(c);
+  const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;
   result.measurement = Associate(candidates, predicted, &used);
   // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
@@ -117,7 +119,12 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);
   }
+  const TimeNs t2 = clock_ ? clock_() : 0;
   result.state = tracker_.Step(t, result.measurement);
+  if (clock_) {
+    const TimeNs t3 = clock_();
+    result.stages = {t1 - t0, t2 - t1, t3 - t2};
+  }
   return result;
 }
 

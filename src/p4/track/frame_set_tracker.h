@@ -8,6 +8,7 @@
 // images and their time come in as arguments; buffers are kept between calls.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -67,8 +68,16 @@ struct CameraSearch {
   bool present = false;    // the camera had an image in this set
 };
 
+// Where a frame set's time went (only with a stage clock; see SetStageClock).
+struct StageTimes {
+  TimeNs segment = 0;    // ROI prediction and segmentation of every camera
+  TimeNs associate = 0;  // epipolar association, triangulation (or one view's depth)
+  TimeNs filter = 0;     // the Kalman filter's step
+};
+
 struct FrameSetResult {
   TimeNs t = 0;
+  StageTimes stages;
   std::optional<Measurement> measurement;
   std::optional<TrackedState> state;
   std::vector<Detection> detections;
@@ -85,6 +94,10 @@ class FrameSetTracker {
   FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images);
 
   const BallTracker& tracker() const { return tracker_; }
+
+  // For benchmarks: a clock the tracker reads between its stages (injected, so the tracker
+  // itself reads no clock). Empty (the default): stages are not timed.
+  void SetStageClock(std::function<TimeNs()> clock) { clock_ = std::move(clock); }
 
  private:
   std::optional<Measurement> Associate(const std::vector<std::vector<Detection>>& candidates,
@@ -111,6 +124,7 @@ class FrameSetTracker {
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<segment::Region> regions_;
   BallTracker tracker_;
+  std::function<TimeNs()> clock_;
 };
 
 }  // namespace p4::track

@@ -1,0 +1,127 @@
+// Google Benchmark micro-benchmarks of each stage of the tracking loop (built with the `bench`
+// preset: cmake --preset bench && cmake --build --preset bench &&
+// build/bench/bench/p4_micro_bench). `p4track bench` gives the whole loop and the comparison with
+// OpenCV; these isolate one stage.
+#include <benchmark/benchmark.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "p4/geometry/epipolar.h"
+#include "p4/geometry/triangulation.h"
+#include "p4/segment/blob_finder.h"
+#include "p4/segment/color_classes.h"
+#include "p4/sim/camera_layout.h"
+#include "p4/sim/renderer.h"
+#include "p4/track/kalman_filter.h"
+
+namespace p4 {
+namespace {
+
+// A rendered frame of camera 0 with the ball in view, per size (cached).
+const I420Image& Frame(int width, int height) {
+  static std::map<std::pair<int, int>, I420Image> cache;
+  auto& image = cache[{width, height}];
+  if (image.width() == 0) {
+    const Rig rig = sim::ClubRig(1, width, height, false);
+    sim::SceneOptions scene;
+    sim::RenderOptions options;
+    options.static_supersampling = 1;
+    sim::CameraRenderer renderer(rig.cameras[0], scene, options);
+    sim::FrameContent content;
+    content.ball = {Eigen::Vector3d(0.4, 0.1, 0.3)};
+    renderer.Render(content, 0, &image);
+  }
+  return image;
+}
+
+void BM_SegmentFullFrame(benchmark::State& state) {
+  const I420Image& image =
+      Frame(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const auto classes = segment::DefaultOrangeBall();
+  const auto lut = classes.BuildLut();
+  segment::SegmentOptions options;
+  options.mask = classes.MaskOf("ball");
+  options.chroma_first = state.range(2) != 0;
+  segment::BlobFinder finder;
+  std::vector<segment::Region> regions;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(finder.Find(image.View(), lut, {}, options, &regions));
+  }
+  state.SetItemsProcessed(state.iterations() * image.width() * image.height());
+}
+BENCHMARK(BM_SegmentFullFrame)
+    ->ArgNames({"w", "h", "chroma_first"})
+    ->Args({320, 240, 1})
+    ->Args({640, 480, 1})
+    ->Args({640, 480, 0})
+    ->Args({1280, 720, 1})
+    ->Args({1920, 1080, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_SegmentRoi(benchmark::State& state) {
+  const I420Image& image = Frame(640, 480);
+  const auto classes = segment::DefaultOrangeBall();
+  const auto lut = classes.BuildLut();
+  segment::SegmentOptions options;
+  options.mask = classes.MaskOf("ball");
+  segment::BlobFinder finder;
+  std::vector<segment::Region> regions;
+  const int size = static_cast<int>(state.range(0));
+  const auto roi = segment::Roi::Around(320, 240, size, size, 640, 480);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(finder.Find(image.View(), lut, roi, options, &regions));
+  }
+}
+BENCHMARK(BM_SegmentRoi)->Arg(40)->Arg(120)->Arg(240)->Unit(benchmark::kMicrosecond);
+
+void BM_OpenCvBaseline(benchmark::State& state) {
+  const I420Image& image =
+      Frame(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const int w = image.width(), h = image.height();
+  cv::Mat bgr, hsv, mask, labels, stats, centroids;
+  for (auto _ : state) {
+    const cv::Mat yuv(h * 3 / 2, w, CV_8UC1, const_cast<uint8_t*>(image.y()));
+    cv::cvtColor(yuv, bgr, cv::COLOR_YUV2BGR_I420);
+    cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);
+    cv::inRange(hsv, cv::Scalar(5, 120, 80), cv::Scalar(25, 255, 255), mask);
+    benchmark::DoNotOptimize(cv::connectedComponentsWithStats(mask, labels, stats, centroids));
+  }
+}
+BENCHMARK(BM_OpenCvBaseline)->Args({640, 480})->Args({1920, 1080})->Unit(benchmark::kMicrosecond);
+
+void BM_Triangulate(benchmark::State& state) {
+  const Rig rig = sim::ClubRig(static_cast<int>(state.range(0)), 1280, 720, false);
+  const Eigen::Vector3d point(0.3, 0.1, 0.25);
+  std::vector<Observation> observations;
+  for (int c = 0; c < rig.size(); ++c)
+    observations.push_back({c, rig.cameras[c].Project(point).value()});
+  for (auto _ : state) benchmark::DoNotOptimize(TriangulateObservations(rig.cameras, observations));
+}
+BENCHMARK(BM_Triangulate)->Arg(2)->Arg(3)->Arg(8);
+
+void BM_EpipolarDistance(benchmark::State& state) {
+  const Rig rig = sim::ClubRig(2, 1280, 720, false);
+  const Eigen::Vector3d point(0.3, 0.1, 0.25);
+  const Eigen::Vector2d a = rig.cameras[0].Project(point).value(),
+                        b = rig.cameras[1].Project(point).value();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(EpipolarDistance(rig.cameras[0], a, rig.cameras[1], b));
+}
+BENCHMARK(BM_EpipolarDistance);
+
+void BM_KalmanPredictUpdate(benchmark::State& state) {
+  track::KalmanFilter filter{track::KalmanOptions{}};
+  const Eigen::Vector3d z(0.3, 0.1, 0.25);
+  const Eigen::Matrix3d r = 1e-6 * Eigen::Matrix3d::Identity();
+  for (auto _ : state) {
+    filter.Predict(1.0 / 120.0);
+    filter.Update(z, r);
+    benchmark::DoNotOptimize(filter.state());
+  }
+}
+BENCHMARK(BM_KalmanPredictUpdate);
+
+}  // namespace
+}  // namespace p4
+
+BENCHMARK_MAIN();
