@@ -1,8 +1,9 @@
 #include "p4/server/web_server.h"
 
 #include <httplib.h>
-#include <pthread.h>
-#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -41,9 +42,9 @@ void YieldToTracking() {
   thread_local bool lowered = false;
   if (lowered) return;
   lowered = true;
-  sched_param param{};
-  param.sched_priority = 0;
-  pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
+  // Linux "nice" is per thread. The lowest level, not SCHED_IDLE: a browser on the same laptop
+  // keeps the CPU busy, and idle-class threads would then never answer it.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
 }
 
 namespace {}  // namespace

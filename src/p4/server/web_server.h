@@ -23,8 +23,8 @@ class Server;
 
 namespace p4::server {
 
-// The UI's threads (HTTP workers, the picture encoder) call this once: they run only on CPU time
-// tracking leaves (Linux SCHED_IDLE, per thread), however many clients there are.
+// The UI's threads (HTTP workers, the picture encoder) call this once: they run at the lowest
+// priority (nice 19, per thread), so tracking wins the CPU when it is short.
 void YieldToTracking();
 
 struct WebServerOptions {
