@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "p4/core/error.h"
+#include "p4/io/calib_files.h"
 #include "p4/io/color_class_file.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
@@ -27,6 +28,7 @@ struct TrackArgs {
   int best_of = 5;
   bool no_referee = false;
   bool ui = false, realtime = false;
+  std::string layout;
   WebFlags web;
 };
 
@@ -56,7 +58,9 @@ int Run(const TrackArgs& a) {
   RunExtras extras;
   extras.realtime = a.realtime;
   if (a.ui) {
-    hub = std::make_unique<server::LiveHub>(rig, game.players, server::LiveOptions{});
+    server::LiveOptions live;
+    if (!a.layout.empty()) live.markers = ReadMarkerLayout(a.layout);
+    hub = std::make_unique<server::LiveHub>(rig, game.players, live);
     web = std::make_unique<server::WebServer>(a.web.Options());
     web->ServeLive(hub.get());
     StartAndAnnounce(web.get(), a.web, "live view");
@@ -124,6 +128,10 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_flag("--ui", args->ui,
                 "Live view in the browser: every camera with its ROI, candidates and epipolar "
                 "lines, the 3D table and ball, the score");
+  cmd->add_option("--layout", args->layout,
+                  "With --ui: show these calibration markers (markers.yaml) found in each "
+                  "picture and where the rig projects them")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--realtime", args->realtime,
                 "Pace video files at their own frame rate (a recording shown as live)");
   args->web.Add(cmd);

@@ -37,9 +37,47 @@ const view = createTableScene(document.getElementById('view3d'), {
 addViewButtons(document.getElementById('view3d'), view);
 p4live.view = view;
 
+// Calibration markers (with --layout): where the rig projects them (magenta) and where the
+// picture shows them (cyan); their mean corner distance says how well the calibration fits.
+let markers = [];
+p4live.markerError = [];
+async function pollMarkers() {
+  try { markers = await (await fetch('/api/live/markers', { cache: 'no-store' })).json(); } catch (e) {}
+  setTimeout(pollMarkers, 500);
+}
+function drawMarkers(i) {
+  const { ctx, canvas } = tiles[i];
+  const projected = (config.markers && config.markers[i]) || [];
+  const found = markers[i] || [];
+  const quad = (corners, colour, dash) => {
+    ctx.strokeStyle = colour;
+    ctx.setLineDash(dash);
+    ctx.beginPath();
+    corners.forEach(([u, v], k) => (k ? ctx.lineTo(u, v) : ctx.moveTo(u, v)));
+    ctx.closePath();
+    ctx.stroke();
+    ctx.setLineDash([]);
+  };
+  let sum = 0, n = 0;
+  for (const m of projected) quad(m.corners, '#ff4fd8', [6, 4]);
+  for (const m of found) {
+    quad(m.corners, '#33e0ff', []);
+    const p = projected.find(q => q.id === m.id);
+    if (p) m.corners.forEach(([u, v], k) => { sum += Math.hypot(u - p.corners[k][0], v - p.corners[k][1]); ++n; });
+  }
+  p4live.markerError[i] = n ? sum / n : null;
+  if (projected.length) {
+    const label = tiles[i].canvas.parentElement.querySelector('.label');
+    label.textContent = `${tiles[i].cam.name} — markers: ${found.length} found` + (n ? `, ${(sum / n).toFixed(1)} px from the rig's` : '');
+  }
+}
+
 function drawOverlay(tile, cam) {
   const { ctx, canvas } = tile;
   ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const lw0 = Math.max(2, canvas.width / 400);
+  ctx.lineWidth = lw0;
+  drawMarkers(tiles.indexOf(tile));
   if (!cam) return;
   const lw = Math.max(2, canvas.width / 400);
   ctx.lineWidth = lw;
@@ -87,4 +125,5 @@ async function poll() {
 }
 renderScore(document.getElementById('score'), null, config.players);
 poll();
+if (config.markers && config.markers.length) pollMarkers();
 (function frame() { view.render(); requestAnimationFrame(frame); })();

@@ -1,5 +1,6 @@
 // The live view in real headless Chromium while a simulated match is tracked: a tile per camera
-// with its picture and overlays, the 3D canvas, the score; and with 20 clients polling as fast
+// with its picture and overlays (and the calibration markers), the 3D canvas, the score; and with
+// 20 clients polling as fast
 // as the page does, tracking still keeps real time (no frame set later than 3 frame periods).
 import os from 'node:os';
 import { join } from 'node:path';
@@ -9,12 +10,12 @@ const dir = tempDir('live');
 let server, browser;
 const clients = [];
 try {
-  p4track(['simulate', '--out', join(dir, 'sim'), '--points', '2', '--seed', '22', '--max-duration', '10']);
+  p4track(['simulate', '--out', join(dir, 'sim'), '--points', '2', '--seed', '22', '--max-duration', '10', '--markers']);
   const track = out => ['track', '--rig', join(dir, 'sim', 'rig.yaml'), '--out', join(dir, out),
     join(dir, 'sim', 'cam0.mp4'), join(dir, 'sim', 'cam1.mp4')];
 
   // 1. The page, on a run paced at the video's own rate.
-  server = await startServing([...track('run_live'), '--ui', '--realtime'], 'live view');
+  server = await startServing([...track('run_live'), '--ui', '--realtime', '--layout', join(dir, 'sim', 'markers.yaml')], 'live view');
   browser = await launchBrowser();
   const errors = [];
   const page = await openPage(browser, server.url, errors);
@@ -30,6 +31,11 @@ try {
   const state = await page.evaluate(() => window.p4live.state);
   check(state.cameras.every(c => c.epipolar.length >= 1), 'each camera gets the epipolar line of the ball seen by the other');
   check(await page.locator('#score .points').count() === 2, 'the scoreboard');
+  // The calibration markers on the table: found in each camera's picture where the rig puts them.
+  await page.waitForFunction(() => window.p4live.markerError.length === 2 &&
+    window.p4live.markerError.every(e => e !== null), null, { timeout: 20000 });
+  const markerError = await page.evaluate(() => window.p4live.markerError);
+  check(markerError.every(e => e < 2.0), `markers found where the rig projects them (${markerError.map(e => e.toFixed(2)).join(', ')} px)`);
   await page.screenshot({ path: join(ARTIFACTS, 'live.png') });
   check(errors.length === 0, `no script errors (${errors.join('; ')})`);
   await browser.close();

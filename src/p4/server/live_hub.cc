@@ -1,6 +1,5 @@
 #include "p4/server/live_hub.h"
 
-
 #include <fmt/format.h>
 
 #include <cmath>
@@ -38,9 +37,25 @@ LiveHub::LiveHub(const Rig& rig, const std::array<std::string, 2>& players,
                                  {"height", c.height},
                                  {"centre", {centre.x(), centre.y(), centre.z()}}});
   }
+  config["markers"] = nlohmann::json::array();
+  if (options.markers) {
+    for (const Camera& c : rig.cameras) {
+      nlohmann::ordered_json projected = nlohmann::ordered_json::array();
+      for (const auto& [id, corners] : options.markers->corners) {
+        nlohmann::ordered_json quad = nlohmann::ordered_json::array();
+        for (const auto& w : corners) {
+          if (const auto p = c.Project(w)) quad.push_back({p->x(), p->y()});
+        }
+        if (quad.size() == 4) projected.push_back({{"id", id}, {"corners", quad}});
+      }
+      config["markers"].push_back(projected);
+    }
+  }
   config_ = config.dump();
+  markers_json_ = std::make_shared<const std::string>("[]");
   jpeg_.resize(rig.size());
   pending_.resize(rig.size());
+  pending_luma_.resize(rig.size());
   has_pending_.assign(rig.size(), false);
   encoder_ = std::thread([this] { EncodeLoop(); });
 }
@@ -63,6 +78,11 @@ std::shared_ptr<const std::string> LiveHub::Jpeg(int camera) const {
   std::lock_guard lock(mutex_);
   if (camera < 0 || camera >= static_cast<int>(jpeg_.size())) return nullptr;
   return jpeg_[camera];
+}
+
+std::shared_ptr<const std::string> LiveHub::Markers() const {
+  std::lock_guard lock(mutex_);
+  return markers_json_;
 }
 
 int64_t LiveHub::frames_offered() const { return offered_; }
@@ -90,6 +110,20 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
         const int factor =
             std::max(1, (set.images[c]->width + options_.jpeg_width - 1) / options_.jpeg_width);
         DownsampleToI420(*set.images[c], factor, &pending_[c]);
+        if (options_.markers) {  // markers are small: they are searched at full resolution
+          const ImageView& view = *set.images[c];
+          auto& luma = pending_luma_[c];
+          luma.resize(static_cast<std::size_t>(view.width) * view.height);
+          for (int y = 0; y < view.height; ++y) {
+            const uint8_t* row = view.planes[0].Row(y);
+            uint8_t* out = luma.data() + static_cast<std::size_t>(y) * view.width;
+            if (view.format == PixelFormat::kYUYV) {
+              for (int x = 0; x < view.width; ++x) out[x] = row[2 * x];
+            } else {
+              std::copy(row, row + view.width, out);
+            }
+          }
+        }
         has_pending_[c] = true;
         ++offered_;
       }
@@ -188,7 +222,10 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
 void LiveHub::EncodeLoop() {
   YieldToTracking();
   std::vector<I420Image> work(rig_.size());
+  std::vector<std::vector<uint8_t>> luma(rig_.size());
   std::vector<bool> todo(rig_.size());
+  nlohmann::json markers = nlohmann::json::array();
+  for (int c = 0; c < rig_.size(); ++c) markers.push_back(nlohmann::json::array());
   std::vector<uint8_t> buffer;
   for (;;) {
     {
@@ -201,6 +238,7 @@ void LiveHub::EncodeLoop() {
       for (int c = 0; c < rig_.size(); ++c) {
         todo[c] = has_pending_[c];
         if (todo[c]) std::swap(work[c], pending_[c]);
+        if (todo[c] && options_.markers) std::swap(luma[c], pending_luma_[c]);
         has_pending_[c] = false;
       }
       encoding_ = true;
@@ -213,8 +251,24 @@ void LiveHub::EncodeLoop() {
       cv::cvtColor(yuv, bgr, cv::COLOR_YUV2BGR_I420);
       cv::imencode(".jpg", bgr, buffer, {cv::IMWRITE_JPEG_QUALITY, options_.jpeg_quality});
       auto jpeg = std::make_shared<const std::string>(buffer.begin(), buffer.end());
-      std::lock_guard lock(mutex_);
-      jpeg_[c] = std::move(jpeg);
+      {
+        std::lock_guard lock(mutex_);
+        jpeg_[c] = std::move(jpeg);
+      }
+      const Camera& camera = rig_.cameras[c];
+      if (options_.markers &&
+          luma[c].size() == static_cast<std::size_t>(camera.width) * camera.height) {
+        const cv::Mat gray(camera.height, camera.width, CV_8UC1, luma[c].data());
+        markers[c] = nlohmann::json::array();
+        for (const auto& m : calib::DetectMarkers(gray, options_.markers->dictionary)) {
+          nlohmann::json quad = nlohmann::json::array();
+          for (const auto& p : m.corners) quad.push_back({p.x(), p.y()});
+          markers[c].push_back({{"id", m.id}, {"corners", quad}});
+        }
+        auto text = std::make_shared<const std::string>(markers.dump());
+        std::lock_guard lock(mutex_);
+        markers_json_ = std::move(text);
+      }
     }
     std::lock_guard lock(mutex_);
     encoding_ = false;

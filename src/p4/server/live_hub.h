@@ -16,10 +16,12 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "p4/calib/marker_pose.h"
 #include "p4/core/image.h"
 #include "p4/geometry/rig.h"
 #include "p4/pipeline/live_sink.h"
@@ -27,6 +29,10 @@
 namespace p4::server {
 
 struct LiveOptions {
+  // Calibration markers to show (paper Figure 10: the marker each camera was calibrated with):
+  // each camera's pictures are searched for them and the layout's corners are projected through
+  // the rig, so the view shows how well the calibration fits. Empty: no markers.
+  std::optional<calib::MarkerLayout> markers;
   double state_hz = 30.0;  // state messages a second, at most
   double frame_hz = 10.0;  // pictures a second per camera, at most
   int jpeg_width = 640;    // pictures are scaled to this width
@@ -50,8 +56,12 @@ class LiveHub : public LiveSink {
   // For the web server (any thread). Null until there is one.
   std::shared_ptr<const std::string> State() const;
   std::shared_ptr<const std::string> Jpeg(int camera) const;
-  // The rig's cameras (names, sizes), the players and the table, as JSON.
+  // The rig's cameras (names, sizes), the players, the table and the markers' projected corners,
+  // as JSON.
   const std::string& Config() const { return config_; }
+  // The markers found in each camera's latest searched picture (full resolution), as JSON:
+  // [[{id, corners: [[u, v] x 4]}, ...] per camera]. "[]" without markers.
+  std::shared_ptr<const std::string> Markers() const;
   int64_t frames_offered() const;  // pictures handed to the encoder (for tests)
   int64_t frames_dropped() const;  // pictures the encoder was too busy for
 
@@ -73,6 +83,8 @@ class LiveHub : public LiveSink {
   std::vector<std::shared_ptr<const std::string>> jpeg_;
   // Handed to the encoder: one picture per camera, I420, copied.
   std::vector<I420Image> pending_;
+  std::vector<std::vector<uint8_t>> pending_luma_;  // full-resolution Y, with markers only
+  std::shared_ptr<const std::string> markers_json_;
   std::vector<bool> has_pending_;
   bool encoding_ = false, stop_ = false;
   std::atomic<int64_t> offered_{0}, dropped_{0};

@@ -131,6 +131,10 @@ void WebServer::ServeLive(const LiveHub* hub) {
     }
     res.set_content(*state, "application/json");
   });
+  server_->Get("/api/live/markers", [hub](const httplib::Request&, httplib::Response& res) {
+    NoStore(res);
+    res.set_content(*hub->Markers(), "application/json");
+  });
   server_->Get(R"(/api/live/camera/(\d{1,2})\.jpg)",
                [hub](const httplib::Request& req, httplib::Response& res) {
                  NoStore(res);

@@ -5,7 +5,7 @@
 //
 //   GET /                         live.html (live) or replay.html (replay)
 //   GET /static/<file>            the UI's files (html, js, css, vendored three.js)
-//   GET /api/live/config|state    LiveHub's JSON;  GET /api/live/camera/<i>.jpg  latest picture
+//   GET /api/live/config|state|markers  LiveHub's JSON;  GET /api/live/camera/<i>.jpg  picture
 //   GET /api/run/info             {"name", "files"};  GET /api/run/<file> trajectory.csv,
 //                                 events.jsonl, score.json, detections.csv
 #pragma once
