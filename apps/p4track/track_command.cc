@@ -21,7 +21,7 @@ struct TrackArgs {
   std::string rig, out, classes, ball = "orange", filter = "p4";
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false;
-  int stride = 1;
+  int stride = 1, threads = 1;
   double epipolar_px = 4.0;
   std::vector<std::string> players{"A", "B"};
   std::string first_server = "A";
@@ -46,6 +46,7 @@ int Run(const TrackArgs& a) {
   options.segment.stride = a.stride;
   options.single_camera_fallback = !a.no_single_camera;
   options.epipolar_px = a.epipolar_px;
+  options.threads = a.threads;
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   GameOptions game;
   game.enabled = !a.no_referee;
@@ -108,6 +109,10 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--filter", args->filter, "p4 (drag-aware) or paper (the paper's Q and R)")
       ->check(CLI::IsMember({"p4", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads,
+                  "Segment the cameras in parallel with this many threads (many or large cameras)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_flag("--no-single-camera", args->no_single_camera,
                 "Never place the ball from one camera by its diameter");

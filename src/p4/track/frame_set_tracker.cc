@@ -21,6 +21,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "ROI sizes: need 8 <= min <= max";
     return false;
   }
+  if (threads < 1 || threads > 64) {
+    if (error) *error = "threads must be 1-64";
+    return false;
+  }
   return true;
 }
 
@@ -31,8 +35,12 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       options_(options),
       finders_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
+      regions_(rig.cameras.size()),
       tracker_(options.tracker) {
   options_.segment.mask = classes.MaskOf("ball");
+  if (options.threads > 1 && rig.size() > 1) {
+    pool_ = std::make_unique<CameraPool>(std::min(options.threads, rig.size()));
+  }
 }
 
 namespace {
@@ -43,6 +51,56 @@ double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
 }
 
 }  // namespace
+
+void FrameSetTracker::SearchCamera(int c, const ImageView& image,
+                                   const std::optional<Eigen::Vector3d>& predicted,
+                                   CameraSearch* search_out, std::vector<Detection>* out) {
+  std::vector<segment::Region>& regions = regions_[c];
+  const Camera& camera = rig_.cameras[c];
+  CameraSearch& search = *search_out;
+  search.present = true;
+  if (options_.use_roi && predicted) {
+    const auto px = camera.Project(*predicted);
+    if (px) {
+      const double d = ExpectedDiameterPx(camera, *predicted);
+      const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)), options_.roi_min_px,
+                                  options_.roi_max_px);
+      search.roi = segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
+    }
+  }
+  int found = 0;
+  if (!search.roi.empty()) {
+    found = finders_[c].Find(image, lut_, search.roi, options_.segment, &regions);
+  }
+  if (found == 0) {
+    search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
+    found = finders_[c].Find(image, lut_, {}, options_.segment, &regions);
+  }
+  int kept = 0;
+  for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
+    const segment::Region& r = regions[k];
+    // A ball, even blurred, is a compact blob: not a wall, not a line.
+    if (r.area > options_.max_area_px ||
+        r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
+        IsStatic(c, {r.cx, r.cy})) {
+      continue;
+    }
+    ++kept;
+    Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
+    if (options_.refine) {
+      // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
+      // differently in each camera, which the epipolar check does not forgive.
+      if (const auto m = segment::MeasureBall(image, r)) {
+        // The lens and the encoder blur the ball's edge by a point-spread of psf_sigma_px,
+        // which adds psf^2 to the moment the minor diameter comes from: take it out.
+        const double psf = options_.psf_sigma_px;
+        d.diameter_px =
+            std::sqrt(std::max(1.0, m->minor_diameter * m->minor_diameter - 16.0 * psf * psf));
+      }
+    }
+    out->push_back(d);
+  }
+}
 
 FrameSetResult FrameSetTracker::Process(TimeNs t,
                                         std::span<const std::optional<ImageView>> images) {
@@ -57,55 +115,15 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   const Eigen::Matrix3d predicted_covariance =
       prediction ? prediction->second : Eigen::Matrix3d::Identity();
   std::vector<std::vector<Detection>> candidates(n);
-  for (int c = 0; c < n && c < static_cast<int>(images.size()); ++c) {
-    if (!images[c]) continue;
-    const Camera& camera = rig_.cameras[c];
-    CameraSearch& search = result.searches[c];
-    search.present = true;
-    if (options_.use_roi && predicted) {
-      const auto px = camera.Project(*predicted);
-      if (px) {
-        const double d = ExpectedDiameterPx(camera, *predicted);
-        const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)),
-                                    options_.roi_min_px, options_.roi_max_px);
-        search.roi =
-            segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
-      }
-    }
-    int found = 0;
-    if (!search.roi.empty()) {
-      found = finders_[c].Find(*images[c], lut_, search.roi, options_.segment, &regions_);
-    }
-    if (found == 0) {
-      search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
-      found = finders_[c].Find(*images[c], lut_, {}, options_.segment, &regions_);
-    }
-    int kept = 0;
-    for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
-      const segment::Region& r = regions_[k];
-      // A ball, even blurred, is a compact blob: not a wall, not a line.
-      if (r.area > options_.max_area_px ||
-          r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
-          IsStatic(c, {r.cx, r.cy})) {
-        continue;
-      }
-      ++kept;
-      Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
-      if (options_.refine) {
-        // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
-        // differently in each camera, which the epipolar check does not forgive.
-        if (const auto m = segment::MeasureBall(*images[c], r)) {
-          // The lens and the encoder blur the ball's edge by a point-spread of psf_sigma_px,
-          // which adds psf^2 to the moment the minor diameter comes from: take it out.
-          const double psf = options_.psf_sigma_px;
-          d.diameter_px =
-              std::sqrt(std::max(1.0, m->minor_diameter * m->minor_diameter - 16.0 * psf * psf));
-        }
-      }
-      candidates[c].push_back(d);
-    }
+  const int present = std::min(n, static_cast<int>(images.size()));
+  const auto search = [&](int c) {
+    if (images[c]) SearchCamera(c, *images[c], predicted, &result.searches[c], &candidates[c]);
+  };
+  if (pool_ && present > 1) {
+    pool_->Run(present, search);
+  } else {
+    for (int c = 0; c < present; ++c) search(c);
   }
-
   for (int c = 0; c < n; ++c) AgeStaticSpots(c);
   const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;

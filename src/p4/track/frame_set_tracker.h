@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +21,7 @@
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/ball_tracker.h"
+#include "p4/track/camera_pool.h"
 
 namespace p4::track {
 
@@ -48,6 +50,9 @@ struct FrameSetOptions {
   // In a rig of several cameras a lone view continues a track only while the filter knows the
   // depth along its ray to this (m): beyond it the row would be a guess, not a measurement.
   double single_view_max_depth_sigma = 0.02;
+  // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
+  // results either way; pays off for several large images searched whole.
+  int threads = 1;
   TrackerOptions tracker;
 
   bool IsValid(std::string* error) const;
@@ -100,6 +105,10 @@ class FrameSetTracker {
   void SetStageClock(std::function<TimeNs()> clock) { clock_ = std::move(clock); }
 
  private:
+  // One camera's part of a time-stamp: its ROI, segmentation, candidate filtering. Touches only
+  // that camera's state (so cameras may run in parallel).
+  void SearchCamera(int c, const ImageView& image, const std::optional<Eigen::Vector3d>& predicted,
+                    CameraSearch* search, std::vector<Detection>* out);
   std::optional<Measurement> Associate(const std::vector<std::vector<Detection>>& candidates,
                                        const std::optional<Eigen::Vector3d>& predicted,
                                        std::vector<std::pair<int, int>>* used) const;
@@ -122,7 +131,8 @@ class FrameSetTracker {
 
   std::vector<segment::BlobFinder> finders_;
   std::vector<std::vector<StaticSpot>> static_spots_;
-  std::vector<segment::Region> regions_;
+  std::vector<std::vector<segment::Region>> regions_;  // per camera
+  std::unique_ptr<CameraPool> pool_;
   BallTracker tracker_;
   std::function<TimeNs()> clock_;
 };

@@ -71,6 +71,33 @@ TEST_F(FrameSetTrackerTest, TriangulatesTheBallAndNarrowsTheSearch) {
   }
 }
 
+// Cameras segmented by a pool of threads: exactly the single-threaded results, frame by frame.
+TEST_F(FrameSetTrackerTest, ThreadsChangeNothingButTheSpeed) {
+  FrameSetOptions one, two;
+  two.threads = 2;
+  FrameSetTracker a(rig_, segment::DefaultOrangeBall(), one);
+  FrameSetTracker b(rig_, segment::DefaultOrangeBall(), two);
+  int measured = 0;
+  for (int k = 0; k < 30; ++k) {
+    const auto views = Frames(k % 7 == 6 ? std::nullopt : std::optional(Ball(k)), k);
+    const TimeNs t = FromSeconds(k / 120.0);
+    const FrameSetResult ra = a.Process(t, views);
+    const FrameSetResult rb = b.Process(t, views);
+    ASSERT_EQ(ra.measurement.has_value(), rb.measurement.has_value()) << k;
+    if (ra.measurement) {
+      ++measured;
+      EXPECT_EQ(ra.measurement->position, rb.measurement->position) << k;
+    }
+    ASSERT_EQ(ra.detections.size(), rb.detections.size()) << k;
+    for (std::size_t i = 0; i < ra.detections.size(); ++i) {
+      EXPECT_EQ(ra.detections[i].pixel, rb.detections[i].pixel);
+      EXPECT_EQ(ra.detections[i].accepted, rb.detections[i].accepted);
+    }
+    for (int c = 0; c < 2; ++c) EXPECT_EQ(ra.searches[c].fell_back, rb.searches[c].fell_back);
+  }
+  EXPECT_GE(measured, 20);
+}
+
 TEST_F(FrameSetTrackerTest, EmptyFrameAndACameraThatSeesNothing) {
   FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
   auto empty = tracker.Process(0, Frames(std::nullopt, 0));
