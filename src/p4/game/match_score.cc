@@ -58,4 +58,25 @@ char MatchScore::match_winner() const {
   return games_[0] > games_[1] ? 'A' : 'B';
 }
 
+std::vector<Event> PointEvents(double t, char winner, const std::string& reason,
+                               const PointOutcome& outcome) {
+  Event point;
+  point.t = t;
+  point.type = "point";
+  point.winner = winner;
+  point.reason = reason;
+  point.score = outcome.score;
+  point.games = outcome.games;
+  std::vector<Event> out{point};
+  for (const auto& [over, type] :
+       {std::pair{outcome.game_over, "game"}, std::pair{outcome.match_over, "match"}}) {
+    if (!over) continue;
+    Event e = point;
+    e.type = type;
+    e.reason.clear();
+    out.push_back(e);
+  }
+  return out;
+}
+
 }  // namespace p4::game

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "p4/game/event.h"
+
 namespace p4::game {
 
 struct PointOutcome {
@@ -47,5 +49,10 @@ class MatchScore {
   std::vector<std::array<int, 2>> finished_;
   bool match_over_ = false;
 };
+
+// The events that announce an awarded point (DESIGN.md events.jsonl): "point" (winner, reason,
+// running score), then "game" and "match" when the point ended them.
+std::vector<Event> PointEvents(double t, char winner, const std::string& reason,
+                               const PointOutcome& outcome);
 
 }  // namespace p4::game

@@ -31,29 +31,9 @@ char Referee::to_play() const {
 std::vector<Event> Referee::Award(double t, char winner, const std::string& reason) {
   const PointOutcome outcome = score_.AwardPoint(winner);
   ++points_played_;
-  Event point;
-  point.t = t;
-  point.type = "point";
-  point.winner = winner;
-  point.reason = reason;
-  point.score = outcome.score;
-  point.games = outcome.games;
-  std::vector<Event> out{point};
-  if (outcome.game_over) {
-    Event g = point;
-    g.type = "game";
-    g.reason.clear();
-    out.push_back(g);
-  }
-  if (outcome.match_over) {
-    Event m = point;
-    m.type = "match";
-    m.reason.clear();
-    out.push_back(m);
-  }
   state_ = outcome.match_over ? State::kMatchOver : State::kPointOver;
   decided_at_ = t;
-  return out;
+  return PointEvents(t, winner, reason, outcome);
 }
 
 std::vector<Event> Referee::Let(double t) {

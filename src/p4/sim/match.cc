@@ -388,25 +388,8 @@ class Simulator {
     result_.trajectory.EndSegment();
 
     const game::PointOutcome outcome = result_.score.AwardPoint(winner);
-    TruthEvent point;
-    point.t = decided;
-    point.type = "point";
-    point.winner = winner;
-    point.reason = reason;
-    point.score = outcome.score;
-    point.games = outcome.games;
-    result_.events.push_back(point);
-    if (outcome.game_over) {
-      TruthEvent g = point;
-      g.type = "game";
-      g.reason.clear();
-      result_.events.push_back(g);
-    }
-    if (outcome.match_over) {
-      TruthEvent m = point;
-      m.type = "match";
-      m.reason.clear();
-      result_.events.push_back(m);
+    for (TruthEvent& e : game::PointEvents(decided, winner, reason, outcome)) {
+      result_.events.push_back(std::move(e));
     }
     return std::max(leave, decided);
   }
