@@ -29,7 +29,7 @@ int Run(const EvalArgs& a) {
   const auto visibility =
       ReadVisibilityCsv((fs::path(a.truth) / "truth_visibility.csv").string(), rig);
   const EvalReport report = Evaluate(truth, run, rig, visibility);
-  auto json_report = nlohmann::ordered_json::parse(report.ToJson());
+  nlohmann::ordered_json json_report = report.ToJson();
   // The game layer, when the run has one (tracked without --no-referee).
   const fs::path run_events = fs::path(a.run) / "events.jsonl";
   if (fs::exists(run_events)) {

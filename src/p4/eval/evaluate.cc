@@ -4,25 +4,24 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "p4/eval/json_round.h"
+
 namespace p4 {
 
-std::string EvalReport::ToJson() const {
+nlohmann::ordered_json EvalReport::ToJson() const {
   nlohmann::ordered_json j;
-  const auto round = [](double x, double unit) {
-    return std::round(x / unit) / std::round(1.0 / unit);
-  };
   j["frames"] = frames;
   j["frames_in_play"] = frames_in_play;
   j["frames_seen"] = frames_seen;
   j["rows"] = rows;
   j["measured_rows"] = measured_rows;
-  j["position_rmse_mm"] = round(position_rmse_mm, 0.001);
-  j["position_median_mm"] = round(position_median_mm, 0.001);
-  j["position_p95_mm"] = round(position_p95_mm, 0.001);
-  j["position_rmse_all_mm"] = round(position_rmse_all_mm, 0.001);
-  j["recall"] = round(recall, 1e-5);
-  j["false_positive_rate"] = round(false_positive_rate, 1e-5);
-  return j.dump(2);
+  j["position_rmse_mm"] = RoundTo(position_rmse_mm, 0.001);
+  j["position_median_mm"] = RoundTo(position_median_mm, 0.001);
+  j["position_p95_mm"] = RoundTo(position_p95_mm, 0.001);
+  j["position_rmse_all_mm"] = RoundTo(position_rmse_all_mm, 0.001);
+  j["recall"] = RoundTo(recall, 1e-5);
+  j["false_positive_rate"] = RoundTo(false_positive_rate, 1e-5);
+  return j;
 }
 
 EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,

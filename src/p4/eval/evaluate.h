@@ -2,6 +2,7 @@
 // Rows are matched by time (the nearest truth row within half a frame). Pure.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,7 @@ struct EvalReport {
   double recall = 0.0;                // frames_seen with a measured row
   double false_positive_rate = 0.0;   // measured rows far from the truth or with no ball
 
-  std::string ToJson() const;
+  nlohmann::ordered_json ToJson() const;
 };
 
 // `visibility` (per truth row and camera, the share of the ball seen; may be empty) decides which

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/eval/json_round.h"
+
 namespace p4 {
 namespace {
 
@@ -62,24 +64,21 @@ double Median(std::vector<double> v) {
 }  // namespace
 
 nlohmann::ordered_json EventReport::ToJson() const {
-  const auto round = [](double x, double unit) {
-    return std::round(x / unit) / std::round(1.0 / unit);
-  };
   nlohmann::ordered_json j;
-  j["bounce_precision"] = round(bounce_precision, 1e-5);
-  j["bounce_recall"] = round(bounce_recall, 1e-5);
+  j["bounce_precision"] = RoundTo(bounce_precision, 1e-5);
+  j["bounce_recall"] = RoundTo(bounce_recall, 1e-5);
   j["bounces_truth"] = truth_bounces;
   j["bounces_run"] = run_bounces;
-  j["bounce_position_median_mm"] = round(bounce_position_median_mm, 0.001);
-  j["bounce_position_max_mm"] = round(bounce_position_max_mm, 0.001);
-  j["bounce_time_median_ms"] = round(bounce_time_median_ms, 0.001);
-  j["bounce_time_max_ms"] = round(bounce_time_max_ms, 0.001);
-  j["net_recall"] = round(net_recall, 1e-5);
-  j["hit_recall"] = round(hit_recall, 1e-5);
-  j["out_recall"] = round(out_recall, 1e-5);
+  j["bounce_position_median_mm"] = RoundTo(bounce_position_median_mm, 0.001);
+  j["bounce_position_max_mm"] = RoundTo(bounce_position_max_mm, 0.001);
+  j["bounce_time_median_ms"] = RoundTo(bounce_time_median_ms, 0.001);
+  j["bounce_time_max_ms"] = RoundTo(bounce_time_max_ms, 0.001);
+  j["net_recall"] = RoundTo(net_recall, 1e-5);
+  j["hit_recall"] = RoundTo(hit_recall, 1e-5);
+  j["out_recall"] = RoundTo(out_recall, 1e-5);
   j["points_truth"] = truth_points;
   j["points_run"] = run_points;
-  j["point_winner_share"] = round(point_winner_share, 1e-5);
+  j["point_winner_share"] = RoundTo(point_winner_share, 1e-5);
   j["final_score_right"] = final_score_right;
   j["final_score_truth"] = {{"games", truth_games}, {"points", truth_score}};
   j["final_score_run"] = {{"games", run_games}, {"points", run_score}};
