@@ -73,26 +73,23 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   // Detected events go to the file and the referee; the referee's (serve, let, point, game,
   // match) to the file, and every point rewrites score.json.
   std::vector<game::Event> published;  // this frame set's, for the live view
+  // The referee's decisions: to the file and the live view, and a point rewrites score.json.
+  const auto announce = [&](const std::vector<game::Event>& decided) {
+    for (const game::Event& r : decided) writer.WriteEvent(r), published.push_back(r);
+    if (!decided.empty()) {
+      writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
+    }
+  };
   const auto publish = [&](const std::vector<game::Event>& events) {
     for (const game::Event& e : events) {
       writer.WriteEvent(e);
       published.push_back(e);
       summary.bounces += e.type == "bounce";
       summary.hits += e.type == "hit";
-      std::vector<game::Event> decided = referee.OnEvent(e);
-      for (const game::Event& r : decided) writer.WriteEvent(r), published.push_back(r);
-      if (!decided.empty()) {
-        writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
-      }
+      announce(referee.OnEvent(e));
     }
   };
-  const auto tick = [&](double t, bool seen) {
-    const std::vector<game::Event> decided = referee.OnTime(t, seen);
-    for (const game::Event& r : decided) writer.WriteEvent(r), published.push_back(r);
-    if (!decided.empty()) {
-      writer.WriteScore(ScoreToJson(referee.score(), referee.points_played(), game.players));
-    }
-  };
+  const auto tick = [&](double t, bool seen) { announce(referee.OnTime(t, seen)); };
   if (game.enabled) writer.WriteScore(ScoreToJson(referee.score(), 0, game.players));
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
