@@ -75,12 +75,9 @@ function drawMarkers(i) {
 function drawOverlay(tile, cam) {
   const { ctx, canvas } = tile;
   ctx.clearRect(0, 0, canvas.width, canvas.height);
-  const lw0 = Math.max(2, canvas.width / 400);
-  ctx.lineWidth = lw0;
+  ctx.lineWidth = Math.max(2, canvas.width / 400);
   drawMarkers(tiles.indexOf(tile));
   if (!cam) return;
-  const lw = Math.max(2, canvas.width / 400);
-  ctx.lineWidth = lw;
   ctx.strokeStyle = '#ffd400';
   for (const line of cam.epipolar) {
     ctx.beginPath();

@@ -97,7 +97,7 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
     while (static_cast<int>(trail_.size()) > options_.trail) trail_.pop_front();
   }
   for (const game::Event& e : events) {
-    recent_events_.push_back(EventToJsonLine(e));
+    recent_events_.push_back(nlohmann::json::parse(EventToJsonLine(e)));  // once per event
     while (static_cast<int>(recent_events_.size()) > options_.events) recent_events_.pop_front();
   }
   // Pictures: at most frame_hz, and only when the encoder is free (else this one is dropped).
@@ -206,8 +206,7 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
   } else {
     state["score"] = nullptr;
   }
-  state["events"] = nlohmann::json::array();
-  for (const auto& line : recent_events_) state["events"].push_back(nlohmann::json::parse(line));
+  state["events"] = recent_events_;
   auto text = std::make_shared<const std::string>(state.dump());
   // Never wait for a reader: the UI's threads run at the lowest priority and one holding the lock
   // may not get the CPU for a while. Busy: this state is dropped, the next frame set publishes.

@@ -16,6 +16,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
@@ -75,7 +76,7 @@ class LiveHub : public LiveSink {
 
   // Tracking thread only.
   std::deque<std::array<double, 3>> trail_;
-  std::deque<std::string> recent_events_;  // JSON lines
+  std::deque<nlohmann::json> recent_events_;  // as they go into the state
   TimeNs last_state_t_ = -(int64_t{1} << 62), last_frame_t_ = -(int64_t{1} << 62);
 
   mutable std::mutex mutex_;
