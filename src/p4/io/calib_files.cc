@@ -77,9 +77,6 @@ std::vector<calib::PointMatch> ReadPointMatches(const std::string& path) {
   const auto rows = ReadCsv(path, "u,v,x,y,z");
   std::vector<calib::PointMatch> points;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].size() != 5) {
-      throw Error(fmt::format("{}: line {}: expected 5 fields (u,v,x,y,z)", path, i + 2));
-    }
     calib::PointMatch p;
     p.pixel = {CsvNumber(path, i, rows[i][0]), CsvNumber(path, i, rows[i][1])};
     p.world = {CsvNumber(path, i, rows[i][2]), CsvNumber(path, i, rows[i][3]),

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -21,8 +22,9 @@ std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std
   if (!in || line != header) {
     throw Error(path + ": line 1: expected the header '" + header + "'");
   }
+  const std::size_t fields = std::count(header.begin(), header.end(), ',') + 1;
   std::vector<std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
+  for (int number = 2; std::getline(in, line); ++number) {
     strip(&line);
     if (line.empty()) continue;
     std::vector<std::string> cells;
@@ -30,6 +32,10 @@ std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std
     std::string cell;
     while (std::getline(s, cell, ',')) cells.push_back(cell);
     if (!line.empty() && line.back() == ',') cells.emplace_back();
+    if (cells.size() != fields) {
+      throw Error(
+          fmt::format("{}: line {}: expected {} fields ({})", path, number, fields, header));
+    }
     rows.push_back(std::move(cells));
   }
   return rows;

@@ -59,7 +59,6 @@ std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
   std::vector<TrajectoryRow> out;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
-    if (r.size() != 10) throw Error(fmt::format("{}: line {}: expected 10 fields", path, i + 2));
     TrajectoryRow row;
     row.t = CsvNumber(path, i, r[0]);
     row.position = {CsvNumber(path, i, r[1]), CsvNumber(path, i, r[2]), CsvNumber(path, i, r[3])};
@@ -77,7 +76,6 @@ std::vector<TruthRow> ReadTruthCsv(const std::string& path) {
   std::vector<TruthRow> out;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
-    if (r.size() != 11) throw Error(fmt::format("{}: line {}: expected 11 fields", path, i + 2));
     TruthRow row;
     row.t = CsvNumber(path, i, r[0]);
     row.in_play = r[10] == "1";
