@@ -26,24 +26,17 @@ Eigen::Vector3d EventDetector::Fit::At(double t) const {
 
 Eigen::Vector3d EventDetector::Fit::VelocityAt(double t) const { return b + 2.0 * (t - t0) * c; }
 
-std::vector<EventDetector::Sample> EventDetector::Piece(bool window) const {
-  if (!window) return piece_;
-  std::vector<Sample> recent;
-  for (const Sample& s : piece_) {
-    if (s.t >= piece_.back().t - options_.window_s) recent.push_back(s);
+EventDetector::Fit EventDetector::FitSamples(std::span<const Sample> samples, bool window) const {
+  std::size_t first = 0;  // with `window`: the first sample within window_s of the last
+  while (window && first + 1 < samples.size() &&
+         samples[first].t < samples.back().t - options_.window_s) {
+    ++first;
   }
-  return recent;
-}
-
-EventDetector::Fit EventDetector::FitSamples(const std::vector<Sample>& samples,
-                                             bool window) const {
-  std::vector<Sample> use = samples;
-  if (window && !use.empty()) {
-    std::erase_if(use, [&](const Sample& s) { return s.t < samples.back().t - options_.window_s; });
-  }
+  const std::span<const Sample> use = samples.subspan(first);
   Fit fit;
   fit.t0 = use.back().t;
   const int n = static_cast<int>(use.size());
+  fit.samples = n;
   const bool free = n >= options_.min_free_fit;
   const int cols = free ? 3 : 2;
   Eigen::MatrixXd A(n, cols);
@@ -52,7 +45,7 @@ EventDetector::Fit EventDetector::FitSamples(const std::vector<Sample>& samples,
   for (int i = 0; i < n; ++i) {
     const double s = use[i].t - fit.t0;
     A(i, 0) = 1.0;
-    if (cols > 1) A(i, 1) = s;
+    A(i, 1) = s;
     if (free) A(i, 2) = s * s;
     rhs.row(i) = (free ? use[i].p : Eigen::Vector3d(use[i].p - s * s * gravity_term)).transpose();
   }
@@ -181,7 +174,6 @@ void EventDetector::Cut(std::vector<Event>* out) {
     }
   }
   const Fit before = FitSamples(piece_, true);
-  const std::vector<Sample> used = Piece(true);
   // Where the two pieces meet: the closest approach of their fits around the gap between them.
   const double ta = piece_.back().t, tb = pending_.front().t;
   const double margin = 0.5 * (tb - ta) + 1e-3;
@@ -194,7 +186,7 @@ void EventDetector::Cut(std::vector<Event>* out) {
   const Eigen::Vector3d at = 0.5 * (before.At(best_t) + after.At(best_t));
   const Eigen::Vector3d v0 = before.VelocityAt(best_t), v1 = after.VelocityAt(best_t);
   const double confidence =
-      std::clamp(std::min(used.size() / 6.0, pending_.size() / 4.0), 0.2, 1.0) *
+      std::clamp(std::min(before.samples / 6.0, pending_.size() / 4.0), 0.2, 1.0) *
       std::clamp(1.0 - best_d / (4.0 * options_.break_m), 0.2, 1.0);
   Event e;
   e.t = best_t;

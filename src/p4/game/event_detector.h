@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,12 +57,13 @@ class EventDetector {
   // p(t) = a + b (t - t0) + c (t - t0)^2 per axis.
   struct Fit {
     double t0 = 0.0;
+    int samples = 0;  // points the fit rests on
     Eigen::Vector3d a, b, c;
     Eigen::Vector3d At(double t) const;
     Eigen::Vector3d VelocityAt(double t) const;
   };
-  Fit FitSamples(const std::vector<Sample>& samples, bool window) const;
-  std::vector<Sample> Piece(bool window) const;
+  // The last window_s of the samples (with `window`) or all of them.
+  Fit FitSamples(std::span<const Sample> samples, bool window) const;
   void CheckCrossings(const Sample& from, const Sample& to, std::vector<Event>* out);
   void Cut(std::vector<Event>* out);
 
