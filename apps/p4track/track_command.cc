@@ -58,6 +58,8 @@ int Run(const TrackArgs& a) {
   std::unique_ptr<server::WebServer> web;
   RunExtras extras;
   extras.realtime = a.realtime;
+  if (!a.layout.empty() && !a.ui)
+    throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
   if (a.ui) {
     server::LiveOptions live;
     if (!a.layout.empty()) live.markers = ReadMarkerLayout(a.layout);

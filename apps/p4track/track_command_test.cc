@@ -114,6 +114,12 @@ TEST_F(TrackCommand, BadInputGetsAClearMessage) {
   EXPECT_NE(
       P4track("track --rig " + rig + " --out " + out + " " + cam0 + " " + junk.string(), &msg), 0);
   EXPECT_NE(msg.find("junk.mp4"), std::string::npos) << msg;
+  // Markers to show, but no live view to show them in.
+  EXPECT_EQ(
+      P4track("track --rig " + rig + " --out " + out + " --layout " + rig + " " + cam0 + " " + cam0,
+              &msg),
+      2);
+  EXPECT_NE(msg.find("shown by the live view only (add --ui)"), std::string::npos) << msg;
   // Camera count.
   EXPECT_NE(P4track("track --rig " + rig + " --out " + out + " " + cam0, &msg), 0);
   EXPECT_NE(msg.find("2 camera(s) but 1 source(s)"), std::string::npos) << msg;
