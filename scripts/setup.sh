@@ -11,7 +11,7 @@ with_tests=0
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config git
-  libeigen3-dev
+  libeigen3-dev libceres-dev
   libopencv-dev libopencv-contrib-dev
   libavformat-dev libavcodec-dev libavdevice-dev libavutil-dev libswscale-dev ffmpeg
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcpp-httplib-dev

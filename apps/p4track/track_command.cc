@@ -20,7 +20,7 @@ namespace {
 struct TrackArgs {
   std::string rig, out, classes, ball = "orange", filter = "p4";
   std::vector<std::string> sources;
-  bool no_roi = false, no_single_camera = false;
+  bool no_roi = false, no_single_camera = false, no_smoothing = false;
   int stride = 1, threads = 1;
   double epipolar_px = 4.0;
   std::vector<std::string> players{"A", "B"};
@@ -58,6 +58,7 @@ int Run(const TrackArgs& a) {
   std::unique_ptr<server::WebServer> web;
   RunExtras extras;
   extras.realtime = a.realtime;
+  extras.smooth_one_camera = !a.no_smoothing;
   if (!a.layout.empty() && !a.ui)
     throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
   if (a.ui) {
@@ -118,6 +119,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-single-camera", args->no_single_camera,
                 "Never place the ball from one camera by its diameter");
+  cmd->add_flag("--no-smoothing", args->no_smoothing,
+                "One camera: write the filter's rows at once instead of refining each stroke "
+                "(bearings, diameters, table contacts) about one stroke later");
   cmd->add_option("--epipolar-px", args->epipolar_px, "Epipolar distance bound, pixels")
       ->check(CLI::Range(0.5, 100.0))
       ->capture_default_str();

@@ -91,6 +91,24 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   };
   const auto tick = [&](double t, bool seen) { announce(referee.OnTime(t, seen)); };
   if (game.enabled) writer.WriteScore(ScoreToJson(referee.score(), 0, game.players));
+  // A time-stamp's result, final: to the files and the game.
+  const auto record = [&](const track::FrameSetResult& r) {
+    writer.Write(r);
+    if (game.enabled) {
+      const double t = ToSeconds(r.t);
+      if (r.measurement) publish(detector.Push(t, r.measurement->position));
+      tick(t, r.measurement.has_value());
+    }
+  };
+  std::optional<track::MonocularSmoother> smoother;
+  if (rig.size() == 1 && extras.smooth_one_camera) {
+    track::MonocularSmootherOptions smoothing;
+    smoothing.pixel_sigma = options.pixel_sigma;
+    smoothing.diameter_sigma = options.diameter_sigma;
+    smoothing.fit.model.drag_per_mass = options.tracker.kalman.drag_per_mass;
+    smoothing.fit.model.gravity = options.tracker.kalman.gravity;
+    smoother.emplace(rig.cameras[0], smoothing);
+  }
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   FrameSet set;
@@ -110,12 +128,11 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       std::this_thread::sleep_until(paced_from + std::chrono::nanoseconds(set.t - *first_t));
     }
     const track::FrameSetResult result = tracker.Process(set.t, set.images);
-    writer.Write(result);
     published.clear();
-    if (game.enabled) {
-      const double t = ToSeconds(set.t);
-      if (result.measurement) publish(detector.Push(t, result.measurement->position));
-      tick(t, result.measurement.has_value());
+    if (smoother) {
+      for (const auto& r : smoother->Push(result)) record(r);
+    } else {
+      record(result);
     }
     if (extras.live) {
       extras.live->OnFrameSet(set, result, published, game.enabled ? &referee.score() : nullptr);
@@ -145,6 +162,9 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       last_progress = now;
       progress(summary.frame_sets);
     }
+  }
+  if (smoother) {
+    for (const auto& r : smoother->Flush()) record(r);
   }
   if (game.enabled) {
     publish(detector.Flush());

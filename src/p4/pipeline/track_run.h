@@ -14,6 +14,7 @@
 #include "p4/pipeline/live_sink.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/frame_set_tracker.h"
+#include "p4/track/monocular_smoother.h"
 
 namespace p4 {
 
@@ -32,6 +33,9 @@ struct GameOptions {
 struct RunExtras {
   LiveSink* live = nullptr;
   bool realtime = false;
+  // A one-camera rig's rows are refined over each stroke (track::MonocularSmoother) before they
+  // are written and scored: about one stroke later (the live view is not delayed).
+  bool smooth_one_camera = true;
 };
 
 struct TrackRunSummary {

@@ -1,0 +1,326 @@
+#include "p4/track/monocular_smoother.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "p4/core/table.h"
+#include "p4/geometry/sphere_depth.h"
+
+namespace p4::track {
+namespace {
+
+// Least-squares quadratic in (t - t_ref) through the views' ideal pixels, evaluated at t_ref.
+template <typename Views>
+Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
+  const int n = static_cast<int>(views.size());
+  Eigen::MatrixXd a(n, 3);
+  Eigen::MatrixXd b(n, 2);
+  for (int i = 0; i < n; ++i) {
+    const double dt = views[i].t - t_ref;
+    a.row(i) << 1.0, dt, dt * dt;
+    b.row(i) = views[i].ideal_px.transpose();
+  }
+  const Eigen::MatrixXd x = a.colPivHouseholderQr().solve(b);
+  return x.row(0).transpose();
+}
+
+}  // namespace
+
+bool MonocularSmootherOptions::IsValid(std::string* error) const {
+  if (!fit.IsValid(error)) return false;
+  if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && max_gap_s > 0.0 &&
+        max_window_s > 0.0 && contact_margin >= 0.0 && contact_depth_agree > 0.0 &&
+        max_fit_rms > 0.0)) {
+    *error = "monocular smoother: sigmas, thresholds and times must be positive";
+    return false;
+  }
+  if (window < 4 || kink_views < 1 || min_piece_views < 4) {
+    *error = "monocular smoother: window and min_piece_views must be >= 4, kink_views >= 1";
+    return false;
+  }
+  return true;
+}
+
+MonocularSmoother::MonocularSmoother(const Camera& camera, const MonocularSmootherOptions& options)
+    : camera_(camera), options_(options) {}
+
+bool MonocularSmoother::OffThePiece(const Piece& piece, const View& view) const {
+  if (piece.size() < 4) return false;
+  const size_t n = std::min<size_t>(piece.size(), options_.window);
+  const std::span<const View> last(piece.end() - n, piece.end());
+  return (QuadraticAt(last, view.t) - view.ideal_px).norm() > options_.kink_px;
+}
+
+std::optional<MonocularSmoother::View> MonocularSmoother::ViewOf(
+    const FrameSetResult& result) const {
+  if (!result.measurement || result.measurement->cameras != 1) return std::nullopt;
+  for (const Detection& d : result.detections) {
+    if (!d.accepted) continue;
+    const auto sphere = PointFromSphereImage(camera_, d.pixel, d.diameter_px,
+                                             EllipseAxis::kAcrossRadius,
+                                             options_.fit.model.ball_radius);
+    if (!sphere) return std::nullopt;
+    View v;
+    v.t = ToSeconds(result.t);
+    v.ideal_px = camera_.fx * camera_.NormalizedFromPixel(d.pixel);
+    BearingObservation& o = v.bearing;
+    o.t = v.t;
+    o.origin = camera_.Center();
+    o.direction = camera_.RayDirection(d.pixel);
+    o.angle_sigma = options_.pixel_sigma / camera_.fx;
+    o.distance = sphere->distance;
+    o.distance_sigma = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+    return v;
+  }
+  return std::nullopt;
+}
+
+std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
+  const std::optional<View> view = ViewOf(result);
+  held_.push_back(std::move(result));
+  if (view) {
+    const View* last = !off_.empty() ? &off_.back() : !piece_.empty() ? &piece_.back() : nullptr;
+    const double window_start = lead_in_           ? lead_in_->after_t
+                                : !window_.empty() ? window_.front().front().t
+                                : !piece_.empty()  ? piece_.front().t
+                                                   : view->t;
+    if (last && view->t - last->t > options_.max_gap_s) {
+      EndPiece({});  // the ball was out of sight: the chain breaks
+    } else if (view->t - window_start > options_.max_window_s && !window_.empty() &&
+               !pending_bend_) {
+      FitWindow(false);  // no bounce for long: hand the window on, the chain goes on
+    }
+    if (OffThePiece(piece_, *view)) {
+      off_.push_back(*view);
+      if (static_cast<int>(off_.size()) >= options_.kink_views) {
+        const Piece next = off_;
+        off_.clear();
+        EndPiece(next);
+      }
+    } else {
+      off_.clear();  // strays between views that fit
+      piece_.push_back(*view);
+    }
+    if (pending_bend_ && static_cast<int>(piece_.size()) >= options_.min_piece_views) {
+      DecideBend();
+    }
+  }
+  if (lead_in_) return Release(lead_in_->after_t + 1e-6);
+  double open_from = std::numeric_limits<double>::infinity();
+  if (!window_.empty()) open_from = window_.front().front().t;
+  if (!piece_.empty()) open_from = std::min(open_from, piece_.front().t);
+  if (!off_.empty()) open_from = std::min(open_from, off_.front().t);
+  return Release(open_from);
+}
+
+std::vector<FrameSetResult> MonocularSmoother::Flush() {
+  EndPiece({});
+  return Release(std::numeric_limits<double>::infinity());
+}
+
+void MonocularSmoother::EndPiece(const Piece& next) {
+  const auto break_chain = [&] {
+    pending_bend_ = false;
+    FitWindow(false);
+    lead_in_.reset();
+    window_.clear();
+    junctions_.clear();
+  };
+  if (static_cast<int>(piece_.size()) < options_.min_fit_views) {
+    // Too short to fit: the chain breaks here; these views keep their rays at the distance
+    // where the flight before ended.
+    break_chain();
+    if (!piece_.empty()) Continue(piece_.front().t, piece_.back().t);
+  } else {
+    if (pending_bend_) DecideBend();
+    window_.push_back(piece_);
+    pending_bend_ = true;
+  }
+  piece_ = next;
+  off_.clear();
+  if (next.empty()) break_chain();
+}
+
+void MonocularSmoother::DecideBend() {
+  pending_bend_ = false;
+  const Junction j = JunctionBetween(window_.back(), piece_);
+  junctions_.push_back(j);
+  if (j.on_plane) {
+    ++bounces_found_;
+    FitWindow(true);
+  }
+}
+
+Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& after) const {
+  Junction j;
+  j.t = 0.5 * (before.back().t + after.front().t);
+  // The two sides' own account (their diameters, a free acceleration), at the bend.
+  std::vector<BearingObservation> obs_before, obs_after;
+  const size_t span = 24;
+  for (size_t i = before.size() - std::min(before.size(), span); i < before.size(); ++i) {
+    obs_before.push_back(before[i].bearing);
+  }
+  for (size_t i = 0; i < std::min(after.size(), span); ++i) obs_after.push_back(after[i].bearing);
+  const Vector6d xb = PieceStateAt(QuadraticPiece(obs_before), j.t, options_.fit.model);
+  const Vector6d xa = PieceStateAt(QuadraticPiece(obs_after), j.t, options_.fit.model);
+  j.point = 0.5 * (xb.head<3>() + xa.head<3>());
+  // A bounce: down, then up, the horizontal velocity kept in direction and mostly in size (a
+  // hit turns it back, the net takes it). Judged on the part across the ray, which the bearings
+  // measure well; a ball flying along the ray cannot be judged so and passes.
+  const Eigen::Vector3d c = camera_.Center();
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(j.point - c).normalized();
+  const double hb = across.dot(xb.tail<3>()), ha = across.dot(xa.tail<3>());
+  const double ratio = ha / (std::abs(hb) > 1e-6 ? hb : 1e-6);
+  const bool judged = std::max(std::abs(hb), std::abs(ha)) > options_.bounce_min_speed;
+  if (!(xb(5) < 0.0 && xa(5) > 0.0) ||
+      (judged && (ratio < options_.bounce_min_speed_ratio ||
+                  ratio > options_.bounce_max_speed_ratio))) {
+    if (getenv("P4_DEBUG_SM")) fprintf(stderr, "bend %.3f vz %.2f %.2f h %.2f %.2f\n", j.t, xb(5), xa(5), hb, ha);
+    return j;
+  }
+  if (getenv("P4_DEBUG_SM")) fprintf(stderr, "bend %.3f vz %.2f %.2f h %.2f %.2f\n", j.t, xb(5), xa(5), hb, ha);
+  // Where the ball was at the bend, in the image (both sides' quadratics), meets the plane.
+  const size_t nb = std::min<size_t>(before.size(), options_.window);
+  const size_t na = std::min<size_t>(after.size(), options_.window);
+  const Eigen::Vector2d px = 0.5 * (QuadraticAt(std::span(before.end() - nb, before.end()), j.t) +
+                                    QuadraticAt(std::span(after.begin(), after.begin() + na), j.t));
+  const Eigen::Vector3d d = (camera_.cam_from_world.rotation.transpose() *
+                             Eigen::Vector3d(px.x() / camera_.fx, px.y() / camera_.fx, 1.0))
+                                .normalized();
+  if (d.z() >= -1e-3) return j;  // the ray does not go down
+  const double r = options_.fit.model.ball_radius;
+  const double m = options_.contact_margin;
+  for (const double plane_z : {r, table::kFloorZ + r}) {
+    const double s = (plane_z - c.z()) / d.z();
+    if (s <= 0.0) continue;
+    const Eigen::Vector3d p = c + s * d;
+    const bool on_table =
+        std::abs(p.x()) <= table::kHalfLength + m && std::abs(p.y()) <= table::kHalfWidth + m;
+    if (on_table != (plane_z == r)) continue;  // the table top only on the table, the floor off it
+    const double agree = options_.contact_depth_agree;
+    if (getenv("P4_DEBUG_SM")) fprintf(stderr, "  plane %.2f s %.2f before %.2f after %.2f\n", plane_z, s, (xb.head<3>() - c).norm(), (xa.head<3>() - c).norm());
+    if (std::abs((xb.head<3>() - c).norm() - s) > agree ||
+        std::abs((xa.head<3>() - c).norm() - s) > agree) {
+      continue;
+    }
+    j.point = p;
+    j.on_plane = true;
+    return j;
+  }
+  return j;
+}
+
+std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
+  if (window_.empty()) return std::nullopt;
+  const size_t closed = window_.size();
+  std::vector<const Piece*> pieces;
+  for (const Piece& p : window_) pieces.push_back(&p);
+  if (with_open && static_cast<int>(piece_.size()) >= options_.min_fit_views &&
+      junctions_.size() >= closed) {
+    pieces.push_back(&piece_);
+  }
+  std::vector<std::vector<BearingObservation>> observations;
+  Stroke guess;
+  for (const Piece* piece : pieces) {
+    std::vector<BearingObservation> obs;
+    for (const View& v : *piece) obs.push_back(v.bearing);
+    guess.pieces.push_back(QuadraticPiece(obs));
+    observations.push_back(std::move(obs));
+  }
+  guess.junctions.assign(junctions_.begin(), junctions_.begin() + (pieces.size() - 1));
+  const double t_first = window_.front().front().t, t_to = window_.back().back().t;
+  const bool lead = lead_in_ && t_first - lead_in_->after_t <= options_.max_gap_s;
+  // A chain's first piece, slow and rising: the service toss (laws 2.6.2).
+  FlightPiece& first = guess.pieces.front();
+  first.toss = !lead && first.state.tail<3>().norm() < options_.toss_max_speed &&
+                   PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
+  if (lead) guess.start = lead_in_junction_;
+  const auto fit = FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
+  const double t_from = lead ? lead_in_->after_t : t_first;
+  std::optional<LeadIn> next;
+  Junction next_junction;
+  if (fit && fit->rms_bearing <= options_.max_fit_rms) {
+    Apply(*fit, lead ? &lead_in_->piece : nullptr, t_from, t_to);
+    ++windows_fitted_;
+    next = LeadIn{fit->pieces[closed - 1], t_to};
+    if (closed < fit->pieces.size()) {
+      next_junction = fit->junctions[closed - 1];
+    } else if (junctions_.size() >= closed) {
+      next_junction = junctions_[closed - 1];
+    }
+  } else {
+    // The chain did not hold: each piece long enough on its own, the first ones after the
+    // lead-in kept at its distance, and the chain starts anew.
+    for (size_t i = 0; i < closed; ++i) {
+      const auto& obs = observations[i];
+      std::optional<Stroke> one;
+      if (static_cast<int>(obs.size()) >= options_.min_piece_views) {
+        Stroke alone;
+        alone.pieces = {guess.pieces[i]};
+        one = FitStroke(std::span(observations).subspan(i, 1), alone, options_.fit);
+      }
+      if (one && one->rms_bearing <= options_.max_fit_rms) {
+        Apply(*one, nullptr, obs.front().t, obs.back().t);
+      } else if (i == 0 && lead) {
+        Continue(obs.front().t, obs.back().t);
+      }
+    }
+  }
+  final_until_ = t_to;
+  lead_in_ = next;
+  lead_in_junction_ = next_junction;
+  window_.clear();
+  junctions_.erase(junctions_.begin(),
+                   junctions_.begin() + std::min(junctions_.size(), closed));
+  if (getenv("P4_DEBUG_SM")) {
+    fprintf(stderr, "window %.3f-%.3f toss %d v %.2f pieces %zu lead %d fit %d rms %.2f J:", t_first, t_to, first.toss, first.state.tail<3>().norm(),
+            pieces.size(), lead, fit.has_value(), fit ? fit->rms_bearing : -1.0);
+    for (auto& j : guess.junctions) fprintf(stderr, " %.3f%s", j.t, j.on_plane ? "P" : "F");
+    fprintf(stderr, "\n");
+  }
+  return fit;
+}
+
+void MonocularSmoother::Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from,
+                              double t_to) {
+  for (FrameSetResult& r : held_) {
+    const double t = ToSeconds(r.t);
+    if (t < t_from - 1e-9 || t > t_to + 1e-9 || (lead_in && t <= t_from + 1e-9)) continue;
+    const FlightModel& m = options_.fit.model;
+    const Vector6d x = lead_in && stroke.start && t < stroke.start->t
+                           ? PieceStateAt(*lead_in, t, m, options_.fit.max_step)
+                           : StrokeStateAt(stroke, t, m, options_.fit.max_step);
+    if (r.state) {
+      r.state->position = x.head<3>();
+      r.state->velocity = x.tail<3>();
+    }
+    if (r.measurement) r.measurement->position = x.head<3>();
+  }
+}
+
+void MonocularSmoother::Continue(double t_first, double t_last) {
+  if (!lead_in_ || t_first - lead_in_->after_t > options_.max_gap_s) return;
+  const Eigen::Vector3d c = camera_.Center();
+  for (FrameSetResult& r : held_) {
+    const double t = ToSeconds(r.t);
+    if (t < t_first - 1e-9 || t > t_last + 1e-9 || !r.measurement) continue;
+    const std::optional<View> view = ViewOf(r);
+    if (!view) continue;
+    const Vector6d x = PieceStateAt(lead_in_->piece, t, options_.fit.model, options_.fit.max_step);
+    const Eigen::Vector3d p = c + (x.head<3>() - c).norm() * view->bearing.direction;
+    r.measurement->position = p;
+    if (r.state) r.state->position = p, r.state->velocity = x.tail<3>();
+  }
+}
+
+std::vector<FrameSetResult> MonocularSmoother::Release(double before_t) {
+  std::vector<FrameSetResult> out;
+  while (!held_.empty() && ToSeconds(held_.front().t) < before_t - 1e-9) {
+    out.push_back(std::move(held_.front()));
+    held_.pop_front();
+  }
+  return out;
+}
+
+}  // namespace p4::track

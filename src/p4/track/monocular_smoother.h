@@ -1,0 +1,116 @@
+// One camera's track refined over its flight between table contacts (beyond the paper, whose
+// one-camera depth from the ball's diameter is "error-prone", §3.2).
+//
+// The Kalman filter gives each time-stamp at once, but from one camera it knows the depth along
+// the ray only from the diameter (~3 % of the distance per frame, and biased where the ball
+// overlaps a player). This stage holds the tracker's time-stamps back until the ball's next table
+// bounce, fits the flight since the last one (stroke_fit.h: bearings, diameters, gravity, drag,
+// spin, the table under each bounce, the ball's continuity through hits) and hands them on with
+// the fit's positions and velocities. The delay is one bounce to the next (about 0.3-0.7 s).
+//
+// Pieces and junctions: in flight the ball's image path is smooth; a bounce or a hit bends it.
+// Each view is predicted by a quadratic in time through the piece's last `window` views (in the
+// camera's undistorted pixels); `kink_views` views in a row off by more than `kink_px` end the
+// piece (one or two are strays and are left out). The bend is a table bounce when the ball goes
+// down before and up after, keeps its speed across the ray in sign and mostly in size, and the
+// ray there meets the table top (z = ball radius) inside its outline at a distance that the
+// diameters on both sides agree with; the floor likewise. Any other bend (a hit, the net) is a
+// free junction: the ball leaves it where it arrived. A bounce closes the window: the pieces up
+// to it are final, and the last of them leads into the next window. A gap in the views
+// (max_gap_s) or a piece too short to fit breaks the chain.
+//
+// Input: the FrameSetTracker's results in time order, for a rig of one camera. World frame,
+// metres, seconds. Pure: time comes with the results.
+#pragma once
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "p4/geometry/camera.h"
+#include "p4/track/frame_set_tracker.h"
+#include "p4/track/stroke_fit.h"
+
+namespace p4::track {
+
+struct MonocularSmootherOptions {
+  StrokeFitOptions fit;
+  double pixel_sigma = 0.5;      // centroid noise, px
+  double diameter_sigma = 0.35;  // diameter noise, px
+  int window = 8;                // views of the quadratic that predicts the next one
+  double kink_px = 2.5;          // a view this far from the prediction is off the piece
+  int kink_views = 3;            // views off in a row that end the piece
+  int min_piece_views = 6;       // views after a bend that decide whether it is a bounce
+  int min_fit_views = 3;         // a shorter piece breaks the chain (the filter's rows stay)
+  double max_gap_s = 0.1;        // views farther apart break the chain
+  double max_window_s = 2.5;     // a longer window without a bounce is handed on anyway
+  double contact_margin = 0.05;  // m beyond the table's outline that still counts as on it
+  double contact_depth_agree = 0.3;  // m: the diameters' distance vs the contact's, at most
+  // A bounce keeps the horizontal velocity across the ray in sign and mostly in size (friction
+  // takes some, topspin may add some); a hit or the net do not. Judged when either side is faster
+  // than bounce_min_speed.
+  double bounce_min_speed_ratio = 0.4;
+  double bounce_max_speed_ratio = 1.6;
+  double bounce_min_speed = 1.0;  // m/s
+  double max_fit_rms = 3.0;       // bearing residuals (sigmas) above which a fit is not used
+  // A chain that starts slower than this (m/s, mid-piece) and rising starts with the service
+  // toss: fitted without spin.
+  double toss_max_speed = 4.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+class MonocularSmoother {
+ public:
+  MonocularSmoother(const Camera& camera, const MonocularSmootherOptions& options = {});
+
+  // Takes the next time-stamp's result; returns those now final, in time order.
+  std::vector<FrameSetResult> Push(FrameSetResult result);
+  // At the end of the input: fits what is open and returns the rest.
+  std::vector<FrameSetResult> Flush();
+
+  int windows_fitted() const { return windows_fitted_; }
+  int bounces_found() const { return bounces_found_; }
+
+ private:
+  struct View {
+    double t = 0.0;
+    Eigen::Vector2d ideal_px;  // undistorted pixel
+    BearingObservation bearing;
+  };
+  using Piece = std::vector<View>;
+
+  std::optional<View> ViewOf(const FrameSetResult& result) const;
+  bool OffThePiece(const Piece& piece, const View& view) const;
+  // Ends the open piece; `next`: the views that begin the next one (empty: the chain breaks).
+  void EndPiece(const Piece& next);
+  // Judges the bend between the window's last piece and the open one; a bounce closes the window.
+  void DecideBend();
+  // The junction at the bend: on the plane if it is a bounce, else free.
+  Junction JunctionBetween(const Piece& before, const Piece& after) const;
+  // Fits the window's pieces (and the open piece when `with_open`) after the lead-in and makes
+  // the rows up to the window's last piece final. Returns the fit, if it was used.
+  std::optional<Stroke> FitWindow(bool with_open);
+  void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
+  // Views between t_first and t_last that no fit explains: on their rays, at the distance the
+  // lead-in's flight has there (the ball cannot be far from where it was a moment ago).
+  void Continue(double t_first, double t_last);
+  std::vector<FrameSetResult> Release(double before_t);
+
+  Camera camera_;
+  MonocularSmootherOptions options_;
+  std::deque<FrameSetResult> held_;
+  std::vector<Piece> window_;        // finished pieces since the last bounce
+  std::vector<Junction> junctions_;  // after each of them (the last: before the open piece)
+  Piece piece_;                      // the open piece
+  std::vector<View> off_;            // views off the open piece, in a row
+  bool pending_bend_ = false;        // the bend before piece_ is not judged yet
+  std::optional<LeadIn> lead_in_;    // the fitted piece before the window
+  Junction lead_in_junction_;        // where it meets the window's first piece
+  double final_until_ = -1.0;        // rows up to this time are final
+  int windows_fitted_ = 0;
+  int bounces_found_ = 0;
+};
+
+}  // namespace p4::track

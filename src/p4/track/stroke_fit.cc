@@ -1,0 +1,391 @@
+#include "p4/track/stroke_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+
+namespace p4::track {
+namespace {
+
+inline double Value(double x) { return x; }
+template <typename J, int N>
+double Value(const ceres::Jet<J, N>& x) {
+  return x.a;
+}
+
+template <typename T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+
+// Gravity, drag and Magnus: a = g - k |v| v + b x v.
+template <typename T>
+Vec3<T> Acceleration(const Vec3<T>& v, const Vec3<T>& b, const FlightModel& m) {
+  Vec3<T> a = -T(m.drag_per_mass) * v.norm() * v + b.cross(v);
+  a.z() -= T(m.gravity);
+  return a;
+}
+
+// Integrates a piece (x[0..2] position, x[3..5] velocity, x[6..8] Magnus vector, at t0) to t,
+// in equal steps of at most max_step (midpoint rule, as the Kalman filter's drag step).
+template <typename T>
+void Propagate(const T* x, double t0, const T& t, const FlightModel& m, double max_step,
+               Vec3<T>* position, Vec3<T>* velocity) {
+  Vec3<T> p(x[0], x[1], x[2]);
+  Vec3<T> v(x[3], x[4], x[5]);
+  const Vec3<T> b(x[6], x[7], x[8]);
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(Value(t) - t0) / max_step)));
+  const T h = (t - T(t0)) / T(steps);
+  for (int i = 0; i < steps; ++i) {
+    const Vec3<T> v_mid = v + T(0.5) * h * Acceleration(v, b, m);
+    const Vec3<T> a = Acceleration(v_mid, b, m);
+    p += h * v + T(0.5) * h * h * a;
+    v += h * a;
+  }
+  *position = p;
+  *velocity = v;
+}
+
+// One frame: two bearing residuals across the ray (in sigmas), or the diameter's distance.
+struct ObservationCost {
+  enum Part { kBearing, kDistance };
+  ObservationCost(const BearingObservation& o, double t0, const FlightModel& m, double step)
+      : obs(o), t0(t0), model(m), max_step(step) {
+    e1 = o.direction.unitOrthogonal();
+    e2 = o.direction.cross(e1);
+  }
+  template <typename T>
+  Vec3<T> To(const T* piece) const {
+    Vec3<T> p, v;
+    Propagate(piece, t0, T(obs.t), model, max_step, &p, &v);
+    return p - obs.origin.cast<T>();
+  }
+  template <typename T>
+  void Bearing(const Vec3<T>& to, T* r) const {
+    const T range = to.norm() + T(1e-9);
+    r[0] = e1.cast<T>().dot(to) / range / T(obs.angle_sigma);
+    r[1] = e2.cast<T>().dot(to) / range / T(obs.angle_sigma);
+  }
+  BearingObservation obs;
+  double t0;
+  FlightModel model;
+  double max_step;
+  Eigen::Vector3d e1, e2;
+};
+
+struct BearingCost : ObservationCost {
+  using ObservationCost::ObservationCost;
+  template <typename T>
+  bool operator()(const T* piece, T* r) const {
+    Bearing(To(piece), r);
+    return true;
+  }
+};
+
+struct DistanceCost : ObservationCost {
+  using ObservationCost::ObservationCost;
+  template <typename T>
+  bool operator()(const T* piece, T* r) const {
+    r[0] = (To(piece).norm() - T(obs.distance)) / T(obs.distance_sigma);
+    return true;
+  }
+};
+
+// A piece passes its junction (t, x, y, z).
+struct JunctionCost {
+  JunctionCost(double t0, double sigma, const FlightModel& m, double step)
+      : t0(t0), sigma(sigma), model(m), max_step(step) {}
+  template <typename T>
+  bool operator()(const T* piece, const T* junction, T* r) const {
+    Vec3<T> p, v;
+    Propagate(piece, t0, junction[0], model, max_step, &p, &v);
+    for (int i = 0; i < 3; ++i) r[i] = (p(i) - junction[1 + i]) / T(sigma);
+    return true;
+  }
+  double t0, sigma;
+  FlightModel model;
+  double max_step;
+};
+
+// A bounce's junction lies on its plane.
+struct PlaneCost {
+  PlaneCost(double plane_z, double sigma) : plane_z(plane_z), sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* junction, T* r) const {
+    r[0] = (junction[3] - T(plane_z)) / T(sigma);
+    return true;
+  }
+  double plane_z, sigma;
+};
+
+// At a bounce the velocity after is the velocity before mapped by the table (restitution e on the
+// normal part, friction mu taking some of the horizontal), give or take what the spin changes:
+// the tracker's bounce map (flight_model.h) as a soft prior.
+struct BouncePrior {
+  BouncePrior(double t0_before, double t0_after, const FlightModel& m, double step,
+              double sigma_horizontal, double sigma_vertical)
+      : t0_before(t0_before), t0_after(t0_after), model(m), max_step(step),
+        sigma_h(sigma_horizontal), sigma_v(sigma_vertical) {}
+  template <typename T>
+  bool operator()(const T* before, const T* after, const T* junction, T* r) const {
+    Vec3<T> pb, vb, pa, va;
+    Propagate(before, t0_before, junction[0], model, max_step, &pb, &vb);
+    Propagate(after, t0_after, junction[0], model, max_step, &pa, &va);
+    const T e = T(model.restitution);
+    const T vh = ceres::sqrt(vb.x() * vb.x() + vb.y() * vb.y() + T(1e-12));
+    T loss = T(model.friction) * (T(1.0) + e) * ceres::abs(vb.z());
+    if (loss > T(0.4) * vh) loss = T(0.4) * vh;
+    const T keep = T(1.0) - loss / vh;
+    r[0] = (va.x() - keep * vb.x()) / T(sigma_h);
+    r[1] = (va.y() - keep * vb.y()) / T(sigma_h);
+    r[2] = (va.z() + e * vb.z()) / T(sigma_v);
+    return true;
+  }
+  double t0_before, t0_after;
+  FlightModel model;
+  double max_step, sigma_h, sigma_v;
+};
+
+// A service toss goes near vertically upwards: its horizontal velocity ~ N(0, sigma^2).
+struct UprightPrior {
+  explicit UprightPrior(double sigma) : sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* piece, T* r) const {
+    r[0] = piece[3] / T(sigma);
+    r[1] = piece[4] / T(sigma);
+    return true;
+  }
+  double sigma;
+};
+
+// The spin is unknown but bounded: a weak prior b ~ N(0, sigma^2).
+struct MagnusPrior {
+  explicit MagnusPrior(double sigma) : sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* piece, T* r) const {
+    for (int i = 0; i < 3; ++i) r[i] = piece[6 + i] / T(sigma);
+    return true;
+  }
+  double sigma;
+};
+
+using PieceParams = std::array<double, 9>;
+
+PieceParams ToParams(const FlightPiece& piece) {
+  PieceParams x;
+  for (int i = 0; i < 6; ++i) x[i] = piece.state(i);
+  for (int i = 0; i < 3; ++i) x[6 + i] = piece.magnus(i);
+  return x;
+}
+
+}  // namespace
+
+bool StrokeFitOptions::IsValid(std::string* error) const {
+  if (!(magnus_sigma > 0.0 && toss_magnus_sigma > 0.0 &&
+        toss_horizontal_sigma > 0.0 && contact_sigma > 0.0 && huber_sigmas > 0.0 &&
+        distance_loss_sigmas > 0.0 && max_step > 0.0 &&
+        max_iterations > 0 && model.gravity > 0.0 && model.drag_per_mass >= 0.0)) {
+    *error = "stroke fit: sigmas, step, iterations and gravity must be positive, drag >= 0";
+    return false;
+  }
+  return true;
+}
+
+FlightPiece QuadraticPiece(std::span<const BearingObservation> observations) {
+  const int n = static_cast<int>(observations.size());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(3 * n, 9);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * n);
+  const double t0 = observations.front().t;
+  for (int i = 0; i < n; ++i) {
+    const BearingObservation& o = observations[i];
+    const double dt = o.t - t0;
+    Eigen::Matrix<double, 3, 9> m;  // p(t) = m * (p0, v0, a)
+    m << Eigen::Matrix3d::Identity(), dt * Eigen::Matrix3d::Identity(),
+        0.5 * dt * dt * Eigen::Matrix3d::Identity();
+    // Across the ray: e . (p - origin) = 0, in sigmas at the observed distance (or 3 m).
+    const Eigen::Vector3d e1 = o.direction.unitOrthogonal(), e2 = o.direction.cross(e1);
+    const double across = o.angle_sigma * (o.distance > 0.0 ? o.distance : 3.0);
+    a.row(3 * i) = e1.transpose() * m / across;
+    a.row(3 * i + 1) = e2.transpose() * m / across;
+    b(3 * i) = e1.dot(o.origin) / across;
+    b(3 * i + 1) = e2.dot(o.origin) / across;
+    if (o.distance > 0.0) {  // along it: d . (p - origin) = distance
+      a.row(3 * i + 2) = o.direction.transpose() * m / o.distance_sigma;
+      b(3 * i + 2) = (o.direction.dot(o.origin) + o.distance) / o.distance_sigma;
+    }
+  }
+  // A weak pull of the acceleration towards gravity keeps short pieces well posed.
+  Eigen::MatrixXd prior = Eigen::MatrixXd::Zero(3, 9);
+  prior.rightCols<3>() = Eigen::Matrix3d::Identity() / 10.0;
+  Eigen::MatrixXd aa(3 * n + 3, 9);
+  aa << a, prior;
+  Eigen::VectorXd bb(3 * n + 3);
+  bb << b, Eigen::Vector3d(0.0, 0.0, -9.81) / 10.0;
+  const Eigen::Matrix<double, 9, 1> x = aa.colPivHouseholderQr().solve(bb);
+  // p(t) at the middle observation.
+  const double dt = observations[n / 2].t - t0;
+  FlightPiece piece;
+  piece.t0 = t0 + dt;
+  piece.state << x.segment<3>(0) + dt * x.segment<3>(3) + 0.5 * dt * dt * x.segment<3>(6),
+      x.segment<3>(3) + dt * x.segment<3>(6);
+  return piece;
+}
+
+Vector6d PieceStateAt(const FlightPiece& piece, double t, const FlightModel& model,
+                      double max_step) {
+  const PieceParams x = ToParams(piece);
+  Eigen::Vector3d p, v;
+  Propagate(x.data(), piece.t0, t, model, max_step, &p, &v);
+  Vector6d out;
+  out << p, v;
+  return out;
+}
+
+Vector6d StrokeStateAt(const Stroke& stroke, double t, const FlightModel& model,
+                       double max_step) {
+  size_t i = 0;
+  while (i < stroke.junctions.size() && t > stroke.junctions[i].t) ++i;
+  return PieceStateAt(stroke.pieces[i], t, model, max_step);
+}
+
+std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>> observations,
+                                const Stroke& guess, const StrokeFitOptions& options,
+                                const LeadIn* lead_in) {
+  const size_t n = guess.pieces.size();
+  if (n == 0 || observations.size() != n || guess.junctions.size() + 1 != n) return std::nullopt;
+  for (const auto& obs : observations) {
+    if (obs.size() < 3) return std::nullopt;
+  }
+  using JunctionParams = std::array<double, 4>;
+  const auto to_params = [](const Junction& j) -> JunctionParams {
+    return {j.t, j.point.x(), j.point.y(), j.point.z()};
+  };
+  std::vector<PieceParams> pieces(n);
+  std::vector<JunctionParams> junctions(n - 1);
+  for (size_t i = 0; i < n; ++i) pieces[i] = ToParams(guess.pieces[i]);
+  for (size_t i = 0; i + 1 < n; ++i) junctions[i] = to_params(guess.junctions[i]);
+
+  ceres::Problem problem;
+  const FlightModel& model = options.model;
+  const double step = options.max_step;
+  for (size_t i = 0; i < n; ++i) {
+    const double t0 = guess.pieces[i].t0;
+    for (const BearingObservation& o : observations[i]) {
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<BearingCost, 2, 9>(new BearingCost(o, t0, model, step)),
+          new ceres::HuberLoss(options.huber_sigmas), pieces[i].data());
+      // A diameter is often off by much more than its noise (the ball over a player, a racket,
+      // a line): a loss that all but ignores such ones.
+      if (o.distance > 0.0) {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DistanceCost, 1, 9>(
+                                     new DistanceCost(o, t0, model, step)),
+                                 new ceres::CauchyLoss(options.distance_loss_sigmas),
+                                 pieces[i].data());
+      }
+    }
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(
+                                 new MagnusPrior(guess.pieces[i].toss
+                                                     ? options.toss_magnus_sigma
+                                                     : options.magnus_sigma)),
+                             nullptr, pieces[i].data());
+    if (guess.pieces[i].toss) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<UprightPrior, 2, 9>(
+                                   new UprightPrior(options.toss_horizontal_sigma)),
+                               nullptr, pieces[i].data());
+    }
+  }
+  // Junction j joins `before` (params, t0, sigma) and `after`, between two times.
+  const auto join = [&](double* before, double before_t0, double before_sigma, size_t after,
+                        const Junction& guess_j, double* j, double from_t, double to_t) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<JunctionCost, 3, 9, 4>(
+                                 new JunctionCost(before_t0, before_sigma, model, step)),
+                             nullptr, before, j);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<JunctionCost, 3, 9, 4>(
+            new JunctionCost(guess.pieces[after].t0, options.contact_sigma, model, step)),
+        nullptr, pieces[after].data(), j);
+    if (guess_j.on_plane) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PlaneCost, 1, 4>(
+                                   new PlaneCost(guess_j.point.z(), options.contact_sigma)),
+                               nullptr, j);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<BouncePrior, 3, 9, 9, 4>(new BouncePrior(
+              before_t0, guess.pieces[after].t0, model, step, options.bounce_sigma_horizontal,
+              options.bounce_sigma_vertical)),
+          nullptr, before, pieces[after].data(), j);
+    }
+    problem.SetParameterLowerBound(j, 0, from_t);
+    problem.SetParameterUpperBound(j, 0, to_t);
+  };
+  for (size_t i = 0; i + 1 < n; ++i) {
+    join(pieces[i].data(), guess.pieces[i].t0, options.contact_sigma, i + 1, guess.junctions[i],
+         junctions[i].data(), observations[i].back().t, observations[i + 1].front().t);
+  }
+  PieceParams lead{};
+  JunctionParams start{};
+  Junction start_guess;
+  if (lead_in) {
+    lead = ToParams(lead_in->piece);
+    const double t_first = observations[0].front().t;
+    if (guess.start) {
+      start_guess = *guess.start;
+    } else {
+      start_guess.t = std::min(t_first, 0.5 * (lead_in->after_t + t_first));
+      start_guess.point =
+          PieceStateAt(lead_in->piece, start_guess.t, model, step).head<3>();
+    }
+    start_guess.t = std::clamp(start_guess.t, lead_in->after_t, t_first);
+    start = to_params(start_guess);
+    problem.AddParameterBlock(lead.data(), 9);
+    problem.SetParameterBlockConstant(lead.data());
+    join(lead.data(), lead_in->piece.t0, lead_in->sigma, 0, start_guess, start.data(),
+         lead_in->after_t, t_first);
+  }
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  if (!summary.IsSolutionUsable()) return std::nullopt;
+
+  const auto to_junction = [](const JunctionParams& p, bool on_plane) {
+    Junction j;
+    j.t = p[0];
+    j.point = {p[1], p[2], p[3]};
+    j.on_plane = on_plane;
+    return j;
+  };
+  Stroke out;
+  out.pieces.resize(n);
+  double sum = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    for (double v : pieces[i]) {
+      if (!std::isfinite(v)) return std::nullopt;
+    }
+    FlightPiece& piece = out.pieces[i];
+    piece.t0 = guess.pieces[i].t0;
+    piece.toss = guess.pieces[i].toss;
+    for (int k = 0; k < 6; ++k) piece.state(k) = pieces[i][k];
+    for (int k = 0; k < 3; ++k) piece.magnus(k) = pieces[i][6 + k];
+    for (const BearingObservation& o : observations[i]) {
+      const ObservationCost cost(o, piece.t0, model, step);
+      double r[2];
+      cost.Bearing(cost.To(pieces[i].data()), r);
+      sum += r[0] * r[0] + r[1] * r[1];
+      count += 2;
+    }
+  }
+  for (size_t i = 0; i + 1 < n; ++i) {
+    out.junctions.push_back(to_junction(junctions[i], guess.junctions[i].on_plane));
+  }
+  if (lead_in) out.start = to_junction(start, false);
+  out.rms_bearing = std::sqrt(sum / std::max(1, count));
+  return out;
+}
+
+}  // namespace p4::track
