@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 
 #include "p4/core/table.h"
@@ -29,9 +30,10 @@ Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
 
 bool MonocularSmootherOptions::IsValid(std::string* error) const {
   if (!fit.IsValid(error)) return false;
-  if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && max_gap_s > 0.0 &&
+  if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px && max_gap_s > 0.0 &&
         max_window_s > 0.0 && contact_margin >= 0.0 && contact_depth_agree > 0.0 &&
-        max_fit_rms > 0.0)) {
+        max_fit_rms > 0.0 && max_fit_rms_short > 0.0 &&
+        merge_rms > 0.0)) {
     *error = "monocular smoother: sigmas, thresholds and times must be positive";
     return false;
   }
@@ -45,40 +47,83 @@ bool MonocularSmootherOptions::IsValid(std::string* error) const {
 MonocularSmoother::MonocularSmoother(const Camera& camera, const MonocularSmootherOptions& options)
     : camera_(camera), options_(options) {}
 
-bool MonocularSmoother::OffThePiece(const Piece& piece, const View& view) const {
-  if (piece.size() < 4) return false;
+double MonocularSmoother::OffBy(const Piece& piece, const View& view) const {
+  if (piece.size() < 4) return 0.0;
   const size_t n = std::min<size_t>(piece.size(), options_.window);
   const std::span<const View> last(piece.end() - n, piece.end());
-  return (QuadraticAt(last, view.t) - view.ideal_px).norm() > options_.kink_px;
+  return (QuadraticAt(last, view.t) - view.ideal_px).norm();
+}
+
+std::optional<MonocularSmoother::View> MonocularSmoother::ViewFrom(const FrameSetResult& result,
+                                                                   const Detection& d) const {
+  const auto sphere = PointFromSphereImage(camera_, d.pixel, d.diameter_px,
+                                           EllipseAxis::kAcrossRadius,
+                                           options_.fit.model.ball_radius);
+  if (!sphere) return std::nullopt;
+  View v;
+  v.t = ToSeconds(result.t);
+  v.ideal_px = camera_.fx * camera_.NormalizedFromPixel(d.pixel);
+  BearingObservation& o = v.bearing;
+  o.t = v.t;
+  o.origin = camera_.Center();
+  o.direction = camera_.RayDirection(d.pixel);
+  o.angle_sigma = options_.pixel_sigma / camera_.fx;
+  o.distance = sphere->distance;
+  o.distance_sigma = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+  return v;
 }
 
 std::optional<MonocularSmoother::View> MonocularSmoother::ViewOf(
     const FrameSetResult& result) const {
   if (!result.measurement || result.measurement->cameras != 1) return std::nullopt;
   for (const Detection& d : result.detections) {
-    if (!d.accepted) continue;
-    const auto sphere = PointFromSphereImage(camera_, d.pixel, d.diameter_px,
-                                             EllipseAxis::kAcrossRadius,
-                                             options_.fit.model.ball_radius);
-    if (!sphere) return std::nullopt;
-    View v;
-    v.t = ToSeconds(result.t);
-    v.ideal_px = camera_.fx * camera_.NormalizedFromPixel(d.pixel);
-    BearingObservation& o = v.bearing;
-    o.t = v.t;
-    o.origin = camera_.Center();
-    o.direction = camera_.RayDirection(d.pixel);
-    o.angle_sigma = options_.pixel_sigma / camera_.fx;
-    o.distance = sphere->distance;
-    o.distance_sigma = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
-    return v;
+    if (d.accepted) return ViewFrom(result, d);
   }
   return std::nullopt;
 }
 
+std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(FrameSetResult* result) const {
+  std::optional<View> view = ViewOf(*result);
+  if (piece_.size() < 4 || !off_.empty()) return view;
+  // Where the open piece's path is at this time: a candidate there is the ball, whether the
+  // filter took it or not (from one camera a filter that went astray in depth gates the ball
+  // out, while its image path goes on plainly).
+  const size_t n = std::min<size_t>(piece_.size(), options_.window);
+  const Eigen::Vector2d expected =
+      QuadraticAt(std::span(piece_.end() - n, piece_.end()), ToSeconds(result->t));
+  if (view && (view->ideal_px - expected).norm() <= options_.kink_px) return view;
+  int best = -1;
+  double best_d = options_.kink_px;
+  for (int k = 0; k < static_cast<int>(result->detections.size()); ++k) {
+    const Eigen::Vector2d px = camera_.fx * camera_.NormalizedFromPixel(result->detections[k].pixel);
+    const double d = (px - expected).norm();
+    if (d <= best_d) best_d = d, best = k;
+  }
+  if (best < 0) return view;
+  const std::optional<View> adopted = ViewFrom(*result, result->detections[best]);
+  if (!adopted) return view;
+  for (int k = 0; k < static_cast<int>(result->detections.size()); ++k) {
+    result->detections[k].accepted = k == best;
+  }
+  const BearingObservation& o = adopted->bearing;
+  const Eigen::Vector3d p = o.origin + o.distance * o.direction;  // until a fit places it
+  if (!result->measurement) result->measurement = Measurement{};
+  result->measurement->position = p;
+  result->measurement->cameras = 1;
+  result->measurement->residual_px = 0.0;
+  if (!result->state) {
+    result->state = TrackedState{};
+    result->state->t = result->t;
+    result->state->position = p;
+  }
+  result->state->measured = true;
+  result->state->cameras = 1;
+  return adopted;
+}
+
 std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
-  const std::optional<View> view = ViewOf(result);
   held_.push_back(std::move(result));
+  const std::optional<View> view = Adopt(&held_.back());
   if (view) {
     const View* last = !off_.empty() ? &off_.back() : !piece_.empty() ? &piece_.back() : nullptr;
     const double window_start = lead_in_           ? lead_in_->after_t
@@ -91,9 +136,13 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
                !pending_bend_) {
       FitWindow(false);  // no bounce for long: hand the window on, the chain goes on
     }
-    if (OffThePiece(piece_, *view)) {
+    const double off_by = OffBy(piece_, *view);
+    if (off_by > options_.kink_px) {
       off_.push_back(*view);
-      if (static_cast<int>(off_.size()) >= options_.kink_views) {
+      // A bend leaves the path ever farther; a view pulled aside by something next to the ball
+      // (an arm, the net's edge) does not.
+      const int n = static_cast<int>(off_.size());
+      if ((n >= options_.kink_views && off_by >= options_.bend_px) || n >= 2 * options_.kink_views) {
         const Piece next = off_;
         off_.clear();
         EndPiece(next);
@@ -106,8 +155,11 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
       DecideBend();
     }
   }
-  if (lead_in_) return Release(lead_in_->after_t + 1e-6);
   double open_from = std::numeric_limits<double>::infinity();
+  const double now = ToSeconds(held_.back().t);
+  std::erase_if(orphans_, [&](const Piece& p) { return now - p.back().t > options_.max_gap_s; });
+  if (!orphans_.empty()) open_from = orphans_.front().front().t;
+  if (lead_in_) return Release(std::min(open_from, lead_in_->after_t + 1e-6));
   if (!window_.empty()) open_from = window_.front().front().t;
   if (!piece_.empty()) open_from = std::min(open_from, piece_.front().t);
   if (!off_.empty()) open_from = std::min(open_from, off_.front().t);
@@ -120,18 +172,24 @@ std::vector<FrameSetResult> MonocularSmoother::Flush() {
 }
 
 void MonocularSmoother::EndPiece(const Piece& next) {
-  const auto break_chain = [&] {
+  // The chain breaks: what is open is fitted; `rest` (views too few to fit) keeps its rays at
+  // the distance where the flight before ended.
+  const auto break_chain = [&](const Piece& rest) {
     pending_bend_ = false;
     FitWindow(false);
+    if (!rest.empty()) {
+      if (lead_in_ && rest.front().t - lead_in_->after_t <= options_.max_gap_s) {
+        Continue(lead_in_->piece, rest.front().t, rest.back().t);
+      } else {
+        orphans_.push_back(rest);  // the next window may reach back to it
+      }
+    }
     lead_in_.reset();
     window_.clear();
     junctions_.clear();
   };
   if (static_cast<int>(piece_.size()) < options_.min_fit_views) {
-    // Too short to fit: the chain breaks here; these views keep their rays at the distance
-    // where the flight before ended.
-    break_chain();
-    if (!piece_.empty()) Continue(piece_.front().t, piece_.back().t);
+    break_chain(piece_);
   } else {
     if (pending_bend_) DecideBend();
     window_.push_back(piece_);
@@ -139,11 +197,25 @@ void MonocularSmoother::EndPiece(const Piece& next) {
   }
   piece_ = next;
   off_.clear();
-  if (next.empty()) break_chain();
+  if (next.empty()) break_chain({});
 }
 
 void MonocularSmoother::DecideBend() {
   pending_bend_ = false;
+  // A bend that one flight explains was none (the ball passing the net's edge, an arm beside it
+  // pulling a view or two aside): the two pieces are one.
+  Piece merged = window_.back();
+  merged.insert(merged.end(), piece_.begin(), piece_.end());
+  std::vector<BearingObservation> obs;
+  for (const View& v : merged) obs.push_back(v.bearing);
+  Stroke one;
+  one.pieces = {QuadraticPiece(obs)};
+  const auto fit = FitStroke(std::span(&obs, 1), one, options_.fit);
+  if (fit && fit->rms_bearing <= options_.merge_rms) {
+    window_.pop_back();
+    piece_ = std::move(merged);
+    return;
+  }
   const Junction j = JunctionBetween(window_.back(), piece_);
   junctions_.push_back(j);
   if (j.on_plane) {
@@ -213,11 +285,18 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
 
 std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   if (window_.empty()) return std::nullopt;
-  const size_t closed = window_.size();
+  // A short last piece after a free junction (a hit just before the ball was lost) would only
+  // be held by its few diameters: it takes the distance where the flight before it ends. (Before
+  // a bounce, the bounce holds it.)
+  size_t closed = window_.size();
+  while (!with_open && closed > 1 && static_cast<int>(window_[closed - 1].size()) < options_.min_piece_views &&
+         !junctions_[closed - 2].on_plane) {
+    --closed;
+  }
   std::vector<const Piece*> pieces;
-  for (const Piece& p : window_) pieces.push_back(&p);
-  if (with_open && static_cast<int>(piece_.size()) >= options_.min_fit_views &&
-      junctions_.size() >= closed) {
+  for (size_t i = 0; i < closed; ++i) pieces.push_back(&window_[i]);
+  if (with_open && closed == window_.size() &&
+      static_cast<int>(piece_.size()) >= options_.min_fit_views && junctions_.size() >= closed) {
     pieces.push_back(&piece_);
   }
   std::vector<std::vector<BearingObservation>> observations;
@@ -229,7 +308,7 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
     observations.push_back(std::move(obs));
   }
   guess.junctions.assign(junctions_.begin(), junctions_.begin() + (pieces.size() - 1));
-  const double t_first = window_.front().front().t, t_to = window_.back().back().t;
+  const double t_first = window_.front().front().t, t_to = window_[closed - 1].back().t;
   const bool lead = lead_in_ && t_first - lead_in_->after_t <= options_.max_gap_s;
   // A chain's first piece, slow and rising: the service toss (laws 2.6.2).
   FlightPiece& first = guess.pieces.front();
@@ -240,39 +319,71 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   const double t_from = lead ? lead_in_->after_t : t_first;
   std::optional<LeadIn> next;
   Junction next_junction;
-  if (fit && fit->rms_bearing <= options_.max_fit_rms) {
+  // A window with a piece too short to judge its bends must fit well to be believed.
+  const bool has_short = std::any_of(pieces.begin(), pieces.end(), [&](const Piece* p) {
+    return static_cast<int>(p->size()) < options_.min_piece_views;
+  });
+  const double max_rms = has_short ? options_.max_fit_rms_short : options_.max_fit_rms;
+  // Nothing but its diameters holds a lone window: it needs many of them.
+  const int views = std::accumulate(pieces.begin(), pieces.end(), 0, [](int n, const Piece* p) {
+    return n + static_cast<int>(p->size());
+  });
+  const bool held = lead || pieces.size() > 1 || views >= options_.min_lone_views;
+  if (fit && held && fit->rms_bearing <= max_rms) {
     Apply(*fit, lead ? &lead_in_->piece : nullptr, t_from, t_to);
     ++windows_fitted_;
     next = LeadIn{fit->pieces[closed - 1], t_to};
+    for (const Piece& orphan : orphans_) {
+      if (t_first - orphan.back().t <= options_.max_gap_s && !lead) {
+        Continue(fit->pieces.front(), orphan.front().t, orphan.back().t);
+      }
+    }
     if (closed < fit->pieces.size()) {
       next_junction = fit->junctions[closed - 1];
     } else if (junctions_.size() >= closed) {
       next_junction = junctions_[closed - 1];
     }
   } else {
-    // The chain did not hold: each piece long enough on its own, the first ones after the
-    // lead-in kept at its distance, and the chain starts anew.
+    // The chain did not hold: the first piece after the lead-in, each later one long enough on
+    // its own; a short one keeps the distance where the flight before it ended.
+    std::optional<LeadIn> prev;
+    if (lead) prev = lead_in_;
     for (size_t i = 0; i < closed; ++i) {
       const auto& obs = observations[i];
+      const bool led = i == 0 && lead;
       std::optional<Stroke> one;
-      if (static_cast<int>(obs.size()) >= options_.min_piece_views) {
+      if (static_cast<int>(obs.size()) >= std::max(options_.min_piece_views,
+                                                   led ? 0 : options_.min_lone_views) || led) {
         Stroke alone;
         alone.pieces = {guess.pieces[i]};
-        one = FitStroke(std::span(observations).subspan(i, 1), alone, options_.fit);
+        if (led) alone.start = lead_in_junction_;
+        one = FitStroke(std::span(observations).subspan(i, 1), alone, options_.fit,
+                        led ? &*lead_in_ : nullptr);
       }
       if (one && one->rms_bearing <= options_.max_fit_rms) {
-        Apply(*one, nullptr, obs.front().t, obs.back().t);
-      } else if (i == 0 && lead) {
-        Continue(obs.front().t, obs.back().t);
+        Apply(*one, led ? &lead_in_->piece : nullptr, led ? t_from : obs.front().t,
+              obs.back().t);
+        prev = LeadIn{one->pieces[0], obs.back().t};
+      } else if (prev && obs.front().t - prev->after_t <= options_.max_gap_s) {
+        Continue(prev->piece, obs.front().t, obs.back().t);
+        prev->after_t = obs.back().t;
+      } else {
+        prev.reset();
       }
     }
+    next = prev;
+    if (junctions_.size() >= closed) next_junction = junctions_[closed - 1];
   }
-  final_until_ = t_to;
+  orphans_.clear();
   lead_in_ = next;
   lead_in_junction_ = next_junction;
+  const size_t all = window_.size();
+  for (size_t i = closed; i < window_.size() && lead_in_; ++i) {
+    Continue(lead_in_->piece, window_[i].front().t, window_[i].back().t);
+    lead_in_->after_t = window_[i].back().t;
+  }
   window_.clear();
-  junctions_.erase(junctions_.begin(),
-                   junctions_.begin() + std::min(junctions_.size(), closed));
+  junctions_.erase(junctions_.begin(), junctions_.begin() + std::min(junctions_.size(), all));
   if (getenv("P4_DEBUG_SM")) {
     fprintf(stderr, "window %.3f-%.3f toss %d v %.2f pieces %zu lead %d fit %d rms %.2f J:", t_first, t_to, first.toss, first.state.tail<3>().norm(),
             pieces.size(), lead, fit.has_value(), fit ? fit->rms_bearing : -1.0);
@@ -299,15 +410,14 @@ void MonocularSmoother::Apply(const Stroke& stroke, const FlightPiece* lead_in, 
   }
 }
 
-void MonocularSmoother::Continue(double t_first, double t_last) {
-  if (!lead_in_ || t_first - lead_in_->after_t > options_.max_gap_s) return;
+void MonocularSmoother::Continue(const FlightPiece& from, double t_first, double t_last) {
   const Eigen::Vector3d c = camera_.Center();
   for (FrameSetResult& r : held_) {
     const double t = ToSeconds(r.t);
     if (t < t_first - 1e-9 || t > t_last + 1e-9 || !r.measurement) continue;
     const std::optional<View> view = ViewOf(r);
     if (!view) continue;
-    const Vector6d x = PieceStateAt(lead_in_->piece, t, options_.fit.model, options_.fit.max_step);
+    const Vector6d x = PieceStateAt(from, t, options_.fit.model, options_.fit.max_step);
     const Eigen::Vector3d p = c + (x.head<3>() - c).norm() * view->bearing.direction;
     r.measurement->position = p;
     if (r.state) r.state->position = p, r.state->velocity = x.tail<3>();

@@ -10,8 +10,8 @@
 //
 // Pieces and junctions: in flight the ball's image path is smooth; a bounce or a hit bends it.
 // Each view is predicted by a quadratic in time through the piece's last `window` views (in the
-// camera's undistorted pixels); `kink_views` views in a row off by more than `kink_px` end the
-// piece (one or two are strays and are left out). The bend is a table bounce when the ball goes
+// camera's undistorted pixels); `kink_views` views in a row off by more than `kink_px`, the last
+// by `bend_px`, end the piece (one or two are strays and are left out). The bend is a table bounce when the ball goes
 // down before and up after, keeps its speed across the ray in sign and mostly in size, and the
 // ray there meets the table top (z = ball radius) inside its outline at a distance that the
 // diameters on both sides agree with; the floor likewise. Any other bend (a hit, the net) is a
@@ -40,9 +40,11 @@ struct MonocularSmootherOptions {
   double diameter_sigma = 0.35;  // diameter noise, px
   int window = 8;                // views of the quadratic that predicts the next one
   double kink_px = 2.5;          // a view this far from the prediction is off the piece
-  int kink_views = 3;            // views off in a row that end the piece
+  int kink_views = 3;            // views off in a row that end the piece, the last by bend_px...
+  double bend_px = 10.0;         // ...(or twice as many views off by less)
   int min_piece_views = 6;       // views after a bend that decide whether it is a bounce
   int min_fit_views = 3;         // a shorter piece breaks the chain (the filter's rows stay)
+  int min_lone_views = 12;       // a window with no bounce, hit or lead-in to hold it
   double max_gap_s = 0.1;        // views farther apart break the chain
   double max_window_s = 2.5;     // a longer window without a bounce is handed on anyway
   double contact_margin = 0.05;  // m beyond the table's outline that still counts as on it
@@ -54,6 +56,8 @@ struct MonocularSmootherOptions {
   double bounce_max_speed_ratio = 1.6;
   double bounce_min_speed = 1.0;  // m/s
   double max_fit_rms = 3.0;       // bearing residuals (sigmas) above which a fit is not used
+  double max_fit_rms_short = 1.0;  // the same for a window with a piece of < min_piece_views
+  double merge_rms = 1.2;  // two pieces that one flight fits this well (sigmas) are one
   // A chain that starts slower than this (m/s, mid-piece) and rising starts with the service
   // toss: fitted without spin.
   double toss_max_speed = 4.0;
@@ -81,8 +85,14 @@ class MonocularSmoother {
   };
   using Piece = std::vector<View>;
 
+  std::optional<View> ViewFrom(const FrameSetResult& result, const Detection& d) const;
+  // The view of the detection the tracker accepted.
   std::optional<View> ViewOf(const FrameSetResult& result) const;
-  bool OffThePiece(const Piece& piece, const View& view) const;
+  // This time-stamp's view of the ball: the candidate on the open piece's path, which may be one
+  // the tracker did not take (it is then marked accepted and the row measured).
+  std::optional<View> Adopt(FrameSetResult* result) const;
+  // How far (undistorted px) a view is from the piece's path.
+  double OffBy(const Piece& piece, const View& view) const;
   // Ends the open piece; `next`: the views that begin the next one (empty: the chain breaks).
   void EndPiece(const Piece& next);
   // Judges the bend between the window's last piece and the open one; a bounce closes the window.
@@ -94,8 +104,9 @@ class MonocularSmoother {
   std::optional<Stroke> FitWindow(bool with_open);
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the
-  // lead-in's flight has there (the ball cannot be far from where it was a moment ago).
-  void Continue(double t_first, double t_last);
+  // flight next to them (`from`, before or after) has there (the ball cannot be far from where
+  // it was a moment ago).
+  void Continue(const FlightPiece& from, double t_first, double t_last);
   std::vector<FrameSetResult> Release(double before_t);
 
   Camera camera_;
@@ -107,8 +118,8 @@ class MonocularSmoother {
   std::vector<View> off_;            // views off the open piece, in a row
   bool pending_bend_ = false;        // the bend before piece_ is not judged yet
   std::optional<LeadIn> lead_in_;    // the fitted piece before the window
+  std::vector<Piece> orphans_;       // views too few to fit, waiting for a window after them
   Junction lead_in_junction_;        // where it meets the window's first piece
-  double final_until_ = -1.0;        // rows up to this time are final
   int windows_fitted_ = 0;
   int bounces_found_ = 0;
 };

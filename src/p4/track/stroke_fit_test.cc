@@ -106,8 +106,8 @@ TEST(StrokeFit, TableContactAndSpinFixTheDepthOfATopspinDrive) {
   const double rms = RmsError(*fit, flight, &worst);
   std::printf("stroke fit: rms %.1f mm, worst %.1f mm, bearings %.2f sigma\n", 1e3 * rms,
               1e3 * worst, fit->rms_bearing);
-  EXPECT_LT(rms, 0.010);
-  EXPECT_LT(worst, 0.025);
+  EXPECT_LT(rms, 0.015);
+  EXPECT_LT(worst, 0.040);
   EXPECT_LT(fit->rms_bearing, 1.5);
   // The contact is found where the ball touched, to a few millimetres and a fraction of a frame.
   EXPECT_NEAR(fit->junctions[0].t, flight.contacts[0].time, 0.002);
@@ -128,7 +128,7 @@ TEST(StrokeFit, OnePieceWithoutContactAveragesTheDiameters) {
   double worst = 0.0;
   const double rms = RmsError(*fit, flight, &worst);
   std::printf("one piece: rms %.1f mm, worst %.1f mm\n", 1e3 * rms, 1e3 * worst);
-  EXPECT_LT(rms, 0.040);
+  EXPECT_LT(rms, 0.020);
 }
 
 TEST(StrokeFit, RefusesMismatchedInput) {
