@@ -53,6 +53,50 @@ TEST_F(TrackCommand, MeetsTheAccuracyTargets) {
   EXPECT_LE(report["position_rmse_all_mm"].get<double>(), 100.0);
 }
 
+// The single-camera fallback on the simulator's defaults but one camera: the target is 50 mm
+// on measured rows. The stroke smoother (bearings, diameters, table contacts) must also beat the
+// Kalman filter's own one-camera rows by far.
+class OneCamera : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ =
+        new fs::path(fs::temp_directory_path() / ("p4_track_e2e1_" + std::to_string(::getpid())));
+    sim_ = *dir_ / "sim";
+    ASSERT_EQ(P4track("simulate --cameras 1 --out " + sim_.string() +
+                      " --points 2 --seed 22 --max-duration 8"),
+              0);
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static nlohmann::json TrackAndEvaluate(const std::string& name, const std::string& flags) {
+    const fs::path run = *dir_ / name;
+    EXPECT_EQ(P4track("track --rig " + (sim_ / "rig.yaml").string() + " --out " + run.string() +
+                      " " + (sim_ / "cam0.mp4").string() + flags),
+              0);
+    std::string out;
+    EXPECT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run.string(), &out), 0) << out;
+    return nlohmann::json::parse(out);
+  }
+  static fs::path* dir_;
+  static fs::path sim_;
+};
+fs::path* OneCamera::dir_ = nullptr;
+fs::path OneCamera::sim_;
+
+TEST_F(OneCamera, MeetsTheSingleCameraTarget) {
+  const auto smoothed = TrackAndEvaluate("run", "");
+  const auto filtered = TrackAndEvaluate("filter", " --no-smoothing");
+  std::printf("smoothed: %s\nfilter only: %s\n", smoothed.dump().c_str(), filtered.dump().c_str());
+  EXPECT_GT(smoothed["measured_rows"].get<int>(), 600);
+  EXPECT_LE(smoothed["position_rmse_mm"].get<double>(), 50.0);
+  EXPECT_LE(smoothed["false_positive_rate"].get<double>(), 0.05);
+  EXPECT_GE(smoothed["bounce_recall"].get<double>(), 0.8);
+  EXPECT_LT(2.0 * smoothed["position_rmse_mm"].get<double>(),
+            filtered["position_rmse_mm"].get<double>());
+}
+
 TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
   std::ifstream trajectory(run_ / "trajectory.csv");
   std::string line;

@@ -51,7 +51,7 @@ struct TrackRunSummary {
   int64_t bounces = 0, hits = 0, points = 0;
   // --realtime only: how far processing fell behind the video's own clock.
   double worst_lag_ms = 0.0;
-  int64_t late = 0;  // frame sets finished more than 3 frame periods behind
+  int64_t late = 0;   // frame sets finished more than 3 frame periods behind
   std::string score;  // e.g. "games 1-0, points 3-5"
 
   double measurements_per_second() const {

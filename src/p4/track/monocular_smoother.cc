@@ -2,8 +2,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <numeric>
 #include <cmath>
+#include <numeric>
 
 #include "p4/core/table.h"
 #include "p4/geometry/sphere_depth.h"
@@ -30,9 +30,9 @@ Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
 
 bool MonocularSmootherOptions::IsValid(std::string* error) const {
   if (!fit.IsValid(error)) return false;
-  if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px && max_gap_s > 0.0 &&
-        max_window_s > 0.0 && contact_margin >= 0.0 && contact_depth_agree > 0.0 &&
-        max_fit_rms > 0.0 && max_fit_rms_short > 0.0 &&
+  if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px &&
+        adopt_px >= 0.0 && max_gap_s > 0.0 && max_window_s > 0.0 && contact_margin >= 0.0 &&
+        contact_depth_agree > 0.0 && max_fit_rms > 0.0 && max_fit_rms_short > 0.0 &&
         merge_rms > 0.0)) {
     *error = "monocular smoother: sigmas, thresholds and times must be positive";
     return false;
@@ -56,9 +56,8 @@ double MonocularSmoother::OffBy(const Piece& piece, const View& view) const {
 
 std::optional<MonocularSmoother::View> MonocularSmoother::ViewFrom(const FrameSetResult& result,
                                                                    const Detection& d) const {
-  const auto sphere = PointFromSphereImage(camera_, d.pixel, d.diameter_px,
-                                           EllipseAxis::kAcrossRadius,
-                                           options_.fit.model.ball_radius);
+  const auto sphere = PointFromSphereImage(
+      camera_, d.pixel, d.diameter_px, EllipseAxis::kAcrossRadius, options_.fit.model.ball_radius);
   if (!sphere) return std::nullopt;
   View v;
   v.t = ToSeconds(result.t);
@@ -93,9 +92,10 @@ std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(FrameSetResult* 
       QuadraticAt(std::span(piece_.end() - n, piece_.end()), ToSeconds(result->t));
   if (view && (view->ideal_px - expected).norm() <= options_.kink_px) return view;
   int best = -1;
-  double best_d = options_.kink_px;
+  double best_d = options_.adopt_px;
   for (int k = 0; k < static_cast<int>(result->detections.size()); ++k) {
-    const Eigen::Vector2d px = camera_.fx * camera_.NormalizedFromPixel(result->detections[k].pixel);
+    const Eigen::Vector2d px =
+        camera_.fx * camera_.NormalizedFromPixel(result->detections[k].pixel);
     const double d = (px - expected).norm();
     if (d <= best_d) best_d = d, best = k;
   }
@@ -142,7 +142,8 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
       // A bend leaves the path ever farther; a view pulled aside by something next to the ball
       // (an arm, the net's edge) does not.
       const int n = static_cast<int>(off_.size());
-      if ((n >= options_.kink_views && off_by >= options_.bend_px) || n >= 2 * options_.kink_views) {
+      if ((n >= options_.kink_views && off_by >= options_.bend_px) ||
+          n >= 2 * options_.kink_views) {
         const Piece next = off_;
         off_.clear();
         EndPiece(next);
@@ -245,13 +246,10 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
   const double hb = across.dot(xb.tail<3>()), ha = across.dot(xa.tail<3>());
   const double ratio = ha / (std::abs(hb) > 1e-6 ? hb : 1e-6);
   const bool judged = std::max(std::abs(hb), std::abs(ha)) > options_.bounce_min_speed;
-  if (!(xb(5) < 0.0 && xa(5) > 0.0) ||
-      (judged && (ratio < options_.bounce_min_speed_ratio ||
-                  ratio > options_.bounce_max_speed_ratio))) {
-    if (getenv("P4_DEBUG_SM")) fprintf(stderr, "bend %.3f vz %.2f %.2f h %.2f %.2f\n", j.t, xb(5), xa(5), hb, ha);
+  if (!(xb(5) < 0.0 && xa(5) > 0.0) || (judged && (ratio < options_.bounce_min_speed_ratio ||
+                                                   ratio > options_.bounce_max_speed_ratio))) {
     return j;
   }
-  if (getenv("P4_DEBUG_SM")) fprintf(stderr, "bend %.3f vz %.2f %.2f h %.2f %.2f\n", j.t, xb(5), xa(5), hb, ha);
   // Where the ball was at the bend, in the image (both sides' quadratics), meets the plane.
   const size_t nb = std::min<size_t>(before.size(), options_.window);
   const size_t na = std::min<size_t>(after.size(), options_.window);
@@ -271,7 +269,6 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
         std::abs(p.x()) <= table::kHalfLength + m && std::abs(p.y()) <= table::kHalfWidth + m;
     if (on_table != (plane_z == r)) continue;  // the table top only on the table, the floor off it
     const double agree = options_.contact_depth_agree;
-    if (getenv("P4_DEBUG_SM")) fprintf(stderr, "  plane %.2f s %.2f before %.2f after %.2f\n", plane_z, s, (xb.head<3>() - c).norm(), (xa.head<3>() - c).norm());
     if (std::abs((xb.head<3>() - c).norm() - s) > agree ||
         std::abs((xa.head<3>() - c).norm() - s) > agree) {
       continue;
@@ -289,7 +286,8 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   // be held by its few diameters: it takes the distance where the flight before it ends. (Before
   // a bounce, the bounce holds it.)
   size_t closed = window_.size();
-  while (!with_open && closed > 1 && static_cast<int>(window_[closed - 1].size()) < options_.min_piece_views &&
+  while (!with_open && closed > 1 &&
+         static_cast<int>(window_[closed - 1].size()) < options_.min_piece_views &&
          !junctions_[closed - 2].on_plane) {
     --closed;
   }
@@ -313,7 +311,7 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   // A chain's first piece, slow and rising: the service toss (laws 2.6.2).
   FlightPiece& first = guess.pieces.front();
   first.toss = !lead && first.state.tail<3>().norm() < options_.toss_max_speed &&
-                   PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
+               PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
   if (lead) guess.start = lead_in_junction_;
   const auto fit = FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
   const double t_from = lead ? lead_in_->after_t : t_first;
@@ -352,8 +350,9 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
       const auto& obs = observations[i];
       const bool led = i == 0 && lead;
       std::optional<Stroke> one;
-      if (static_cast<int>(obs.size()) >= std::max(options_.min_piece_views,
-                                                   led ? 0 : options_.min_lone_views) || led) {
+      if (static_cast<int>(obs.size()) >=
+              std::max(options_.min_piece_views, led ? 0 : options_.min_lone_views) ||
+          led) {
         Stroke alone;
         alone.pieces = {guess.pieces[i]};
         if (led) alone.start = lead_in_junction_;
@@ -361,8 +360,7 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
                         led ? &*lead_in_ : nullptr);
       }
       if (one && one->rms_bearing <= options_.max_fit_rms) {
-        Apply(*one, led ? &lead_in_->piece : nullptr, led ? t_from : obs.front().t,
-              obs.back().t);
+        Apply(*one, led ? &lead_in_->piece : nullptr, led ? t_from : obs.front().t, obs.back().t);
         prev = LeadIn{one->pieces[0], obs.back().t};
       } else if (prev && obs.front().t - prev->after_t <= options_.max_gap_s) {
         Continue(prev->piece, obs.front().t, obs.back().t);
@@ -384,12 +382,6 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   }
   window_.clear();
   junctions_.erase(junctions_.begin(), junctions_.begin() + std::min(junctions_.size(), all));
-  if (getenv("P4_DEBUG_SM")) {
-    fprintf(stderr, "window %.3f-%.3f toss %d v %.2f pieces %zu lead %d fit %d rms %.2f J:", t_first, t_to, first.toss, first.state.tail<3>().norm(),
-            pieces.size(), lead, fit.has_value(), fit ? fit->rms_bearing : -1.0);
-    for (auto& j : guess.junctions) fprintf(stderr, " %.3f%s", j.t, j.on_plane ? "P" : "F");
-    fprintf(stderr, "\n");
-  }
   return fit;
 }
 

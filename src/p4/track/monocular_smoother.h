@@ -11,12 +11,12 @@
 // Pieces and junctions: in flight the ball's image path is smooth; a bounce or a hit bends it.
 // Each view is predicted by a quadratic in time through the piece's last `window` views (in the
 // camera's undistorted pixels); `kink_views` views in a row off by more than `kink_px`, the last
-// by `bend_px`, end the piece (one or two are strays and are left out). The bend is a table bounce when the ball goes
-// down before and up after, keeps its speed across the ray in sign and mostly in size, and the
-// ray there meets the table top (z = ball radius) inside its outline at a distance that the
-// diameters on both sides agree with; the floor likewise. Any other bend (a hit, the net) is a
-// free junction: the ball leaves it where it arrived. A bounce closes the window: the pieces up
-// to it are final, and the last of them leads into the next window. A gap in the views
+// by `bend_px`, end the piece (one or two are strays and are left out). The bend is a table bounce
+// when the ball goes down before and up after, keeps its speed across the ray in sign and mostly in
+// size, and the ray there meets the table top (z = ball radius) inside its outline at a distance
+// that the diameters on both sides agree with; the floor likewise. Any other bend (a hit, the net)
+// is a free junction: the ball leaves it where it arrived. A bounce closes the window: the pieces
+// up to it are final, and the last of them leads into the next window. A gap in the views
 // (max_gap_s) or a piece too short to fit breaks the chain.
 //
 // Input: the FrameSetTracker's results in time order, for a rig of one camera. World frame,
@@ -40,24 +40,25 @@ struct MonocularSmootherOptions {
   double diameter_sigma = 0.35;  // diameter noise, px
   int window = 8;                // views of the quadratic that predicts the next one
   double kink_px = 2.5;          // a view this far from the prediction is off the piece
-  int kink_views = 3;            // views off in a row that end the piece, the last by bend_px...
-  double bend_px = 10.0;         // ...(or twice as many views off by less)
-  int min_piece_views = 6;       // views after a bend that decide whether it is a bounce
-  int min_fit_views = 3;         // a shorter piece breaks the chain (the filter's rows stay)
-  int min_lone_views = 12;       // a window with no bounce, hit or lead-in to hold it
-  double max_gap_s = 0.1;        // views farther apart break the chain
-  double max_window_s = 2.5;     // a longer window without a bounce is handed on anyway
-  double contact_margin = 0.05;  // m beyond the table's outline that still counts as on it
-  double contact_depth_agree = 0.3;  // m: the diameters' distance vs the contact's, at most
+  double adopt_px = 2.5;    // a candidate the tracker did not take, this near the path, is the ball
+  int kink_views = 3;       // views off in a row that end the piece, the last by bend_px...
+  double bend_px = 10.0;    // ...(or twice as many views off by less)
+  int min_piece_views = 6;  // views after a bend that decide whether it is a bounce
+  int min_fit_views = 3;    // a shorter piece breaks the chain (the filter's rows stay)
+  int min_lone_views = 12;  // a window with no bounce, hit or lead-in to hold it
+  double max_gap_s = 0.1;   // views farther apart break the chain
+  double max_window_s = 2.5;         // a longer window without a bounce is handed on anyway
+  double contact_margin = 0.05;      // m beyond the table's outline that still counts as on it
+  double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most
   // A bounce keeps the horizontal velocity across the ray in sign and mostly in size (friction
   // takes some, topspin may add some); a hit or the net do not. Judged when either side is faster
   // than bounce_min_speed.
   double bounce_min_speed_ratio = 0.4;
   double bounce_max_speed_ratio = 1.6;
-  double bounce_min_speed = 1.0;  // m/s
-  double max_fit_rms = 3.0;       // bearing residuals (sigmas) above which a fit is not used
+  double bounce_min_speed = 1.0;   // m/s
+  double max_fit_rms = 3.0;        // bearing residuals (sigmas) above which a fit is not used
   double max_fit_rms_short = 1.0;  // the same for a window with a piece of < min_piece_views
-  double merge_rms = 1.2;  // two pieces that one flight fits this well (sigmas) are one
+  double merge_rms = 1.2;          // two pieces that one flight fits this well (sigmas) are one
   // A chain that starts slower than this (m/s, mid-piece) and rising starts with the service
   // toss: fitted without spin.
   double toss_max_speed = 4.0;

@@ -124,8 +124,12 @@ struct PlaneCost {
 struct BouncePrior {
   BouncePrior(double t0_before, double t0_after, const FlightModel& m, double step,
               double sigma_horizontal, double sigma_vertical)
-      : t0_before(t0_before), t0_after(t0_after), model(m), max_step(step),
-        sigma_h(sigma_horizontal), sigma_v(sigma_vertical) {}
+      : t0_before(t0_before),
+        t0_after(t0_after),
+        model(m),
+        max_step(step),
+        sigma_h(sigma_horizontal),
+        sigma_v(sigma_vertical) {}
   template <typename T>
   bool operator()(const T* before, const T* after, const T* junction, T* r) const {
     Vec3<T> pb, vb, pa, va;
@@ -181,9 +185,8 @@ PieceParams ToParams(const FlightPiece& piece) {
 }  // namespace
 
 bool StrokeFitOptions::IsValid(std::string* error) const {
-  if (!(magnus_sigma > 0.0 && toss_magnus_sigma > 0.0 &&
-        toss_horizontal_sigma > 0.0 && contact_sigma > 0.0 && huber_sigmas > 0.0 &&
-        distance_loss_sigmas > 0.0 && max_step > 0.0 &&
+  if (!(magnus_sigma > 0.0 && toss_magnus_sigma > 0.0 && toss_horizontal_sigma > 0.0 &&
+        contact_sigma > 0.0 && huber_sigmas > 0.0 && distance_loss_sigmas > 0.0 && max_step > 0.0 &&
         max_iterations > 0 && model.gravity > 0.0 && model.drag_per_mass >= 0.0)) {
     *error = "stroke fit: sigmas, step, iterations and gravity must be positive, drag >= 0";
     return false;
@@ -241,8 +244,7 @@ Vector6d PieceStateAt(const FlightPiece& piece, double t, const FlightModel& mod
   return out;
 }
 
-Vector6d StrokeStateAt(const Stroke& stroke, double t, const FlightModel& model,
-                       double max_step) {
+Vector6d StrokeStateAt(const Stroke& stroke, double t, const FlightModel& model, double max_step) {
   size_t i = 0;
   while (i < stroke.junctions.size() && t > stroke.junctions[i].t) ++i;
   return PieceStateAt(stroke.pieces[i], t, model, max_step);
@@ -283,11 +285,10 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
                                  pieces[i].data());
       }
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(
-                                 new MagnusPrior(guess.pieces[i].toss
-                                                     ? options.toss_magnus_sigma
-                                                     : options.magnus_sigma)),
-                             nullptr, pieces[i].data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(new MagnusPrior(
+            guess.pieces[i].toss ? options.toss_magnus_sigma : options.magnus_sigma)),
+        nullptr, pieces[i].data());
     if (guess.pieces[i].toss) {
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<UprightPrior, 2, 9>(
                                    new UprightPrior(options.toss_horizontal_sigma)),
@@ -309,9 +310,9 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
                                    new PlaneCost(guess_j.point.z(), options.contact_sigma)),
                                nullptr, j);
       problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<BouncePrior, 3, 9, 9, 4>(new BouncePrior(
-              before_t0, guess.pieces[after].t0, model, step, options.bounce_sigma_horizontal,
-              options.bounce_sigma_vertical)),
+          new ceres::AutoDiffCostFunction<BouncePrior, 3, 9, 9, 4>(
+              new BouncePrior(before_t0, guess.pieces[after].t0, model, step,
+                              options.bounce_sigma_horizontal, options.bounce_sigma_vertical)),
           nullptr, before, pieces[after].data(), j);
     }
     problem.SetParameterLowerBound(j, 0, from_t);
@@ -331,8 +332,7 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
       start_guess = *guess.start;
     } else {
       start_guess.t = std::min(t_first, 0.5 * (lead_in->after_t + t_first));
-      start_guess.point =
-          PieceStateAt(lead_in->piece, start_guess.t, model, step).head<3>();
+      start_guess.point = PieceStateAt(lead_in->piece, start_guess.t, model, step).head<3>();
     }
     start_guess.t = std::clamp(start_guess.t, lead_in->after_t, t_first);
     start = to_params(start_guess);

@@ -12,11 +12,11 @@
 // What fixes the depth along the camera's rays: the bearings give each piece's shape up to its
 // distance; a bounce sits where a ray meets a known plane, which anchors both pieces it joins;
 // the lead-in carries the last anchor across the hit; at a bounce the velocity after follows from
-// the velocity before (restitution and friction, give or take the spin); the diameters (noisy, ~3 % of the distance
-// per frame) and gravity weigh in everywhere.
-// Least squares over all pieces and contacts at once (Ceres, automatic derivatives, Huber loss on
-// every bearing, a Cauchy loss on every diameter: neither a stray detection nor a ball merged with
-// a player's arm may pull the flight).
+// the velocity before (restitution and friction, give or take the spin); the diameters (noisy, ~3 %
+// of the distance per frame) and gravity weigh in everywhere. Least squares over all pieces and
+// contacts at once (Ceres, automatic derivatives, Huber loss on every bearing, a Cauchy loss on
+// every diameter: neither a stray detection nor a ball merged with a player's arm may pull the
+// flight).
 //
 // World frame of DESIGN.md (z up), metres, seconds, radians. Pure.
 #pragma once
@@ -77,18 +77,18 @@ struct LeadIn {
 };
 
 struct StrokeFitOptions {
-  FlightModel model;                // gravity, drag, ball radius
-  double magnus_sigma = 1.5;        // 1/s, prior on each component of b (600 rad/s of spin ~ 1.1)
-  double toss_magnus_sigma = 0.1;     // 1/s, the same for a toss
+  FlightModel model;               // gravity, drag, ball radius
+  double magnus_sigma = 1.5;       // 1/s, prior on each component of b (600 rad/s of spin ~ 1.1)
+  double toss_magnus_sigma = 0.1;  // 1/s, the same for a toss
   double toss_horizontal_sigma = 0.5;  // m/s, prior on a toss's horizontal velocity
-  double contact_sigma = 0.002;     // m: how closely both pieces pass their contact point
+  double contact_sigma = 0.002;        // m: how closely both pieces pass their contact point
   // The velocity after a bounce vs the bounce map of the velocity before (model.restitution,
   // model.friction): what spin can change, m/s.
   double bounce_sigma_horizontal = 1.0;
   double bounce_sigma_vertical = 0.6;
-  double huber_sigmas = 3.0;        // bearing residuals beyond this count linearly
+  double huber_sigmas = 3.0;          // bearing residuals beyond this count linearly
   double distance_loss_sigmas = 1.0;  // diameters' distances beyond this count ~logarithmically
-  double max_step = 0.004;          // s, integration step (midpoint rule: < 0.1 mm at 4 ms)
+  double max_step = 0.004;            // s, integration step (midpoint rule: < 0.1 mm at 4 ms)
   int max_iterations = 60;
 
   bool IsValid(std::string* error) const;
