@@ -100,7 +100,7 @@ std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(FrameSetResult* 
     if (d <= best_d) best_d = d, best = k;
   }
   if (best < 0) return view;
-  const std::optional<View> adopted = ViewFrom(*result, result->detections[best]);
+  std::optional<View> adopted = ViewFrom(*result, result->detections[best]);
   if (!adopted) return view;
   for (int k = 0; k < static_cast<int>(result->detections.size()); ++k) {
     result->detections[k].accepted = k == best;
@@ -280,8 +280,8 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
   return j;
 }
 
-std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
-  if (window_.empty()) return std::nullopt;
+void MonocularSmoother::FitWindow(bool with_open) {
+  if (window_.empty()) return;
   // A short last piece after a free junction (a hit just before the ball was lost) would only
   // be held by its few diameters: it takes the distance where the flight before it ends. (Before
   // a bounce, the bounce holds it.)
@@ -382,7 +382,6 @@ std::optional<Stroke> MonocularSmoother::FitWindow(bool with_open) {
   }
   window_.clear();
   junctions_.erase(junctions_.begin(), junctions_.begin() + std::min(junctions_.size(), all));
-  return fit;
 }
 
 void MonocularSmoother::Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from,

@@ -101,8 +101,8 @@ class MonocularSmoother {
   // The junction at the bend: on the plane if it is a bounce, else free.
   Junction JunctionBetween(const Piece& before, const Piece& after) const;
   // Fits the window's pieces (and the open piece when `with_open`) after the lead-in and makes
-  // the rows up to the window's last piece final. Returns the fit, if it was used.
-  std::optional<Stroke> FitWindow(bool with_open);
+  // the rows up to the window's last piece final.
+  void FitWindow(bool with_open);
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the
   // flight next to them (`from`, before or after) has there (the ball cannot be far from where
