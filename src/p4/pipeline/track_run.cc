@@ -92,8 +92,14 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   const auto tick = [&](double t, bool seen) { announce(referee.OnTime(t, seen)); };
   if (game.enabled) writer.WriteScore(ScoreToJson(referee.score(), 0, game.players));
   // A time-stamp's result, final: to the files and the game.
+  // (A one-camera rig's smoother may add measured rows: the counts are of what is written.)
   const auto record = [&](const track::FrameSetResult& r) {
     writer.Write(r);
+    if (r.measurement) {
+      ++summary.measured;
+      if (r.measurement->cameras >= 2) ++summary.multi_view;
+    }
+    if (r.state) ++summary.states;
     if (game.enabled) {
       const double t = ToSeconds(r.t);
       if (r.measurement) publish(detector.Push(t, r.measurement->position));
@@ -147,11 +153,6 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       if (summary.frame_sets > 0 && lag_ms > 3e3 * ToSeconds(set.t - last_t_before)) ++summary.late;
     }
     ++summary.frame_sets;
-    if (result.measurement) {
-      ++summary.measured;
-      if (result.measurement->cameras >= 2) ++summary.multi_view;
-    }
-    if (result.state) ++summary.states;
     for (const auto& s : result.searches) {
       if (s.roi.empty()) continue;
       ++summary.roi_searches;
