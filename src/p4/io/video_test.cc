@@ -90,6 +90,21 @@ TEST(Video, MissingFileIsNamed) {
   EXPECT_THROW(VideoWriter("/tmp/p4_odd.mp4", odd), Error);
 }
 
+// /dev/videoN goes to FFmpeg's V4L2 input (libavdevice): a device that is not there is named in
+// the error, which comes from the V4L2 open (this FFmpeg has the input). A real camera is not
+// available on the build machine.
+TEST(Video, AV4l2DeviceThatIsNotThereIsNamed) {
+  EXPECT_TRUE(VideoReader::IsLive("/dev/video97"));
+  try {
+    VideoReader reader("/dev/video97");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/dev/video97: cannot open"), std::string::npos) << what;
+    EXPECT_EQ(what.find("no V4L2 input"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace p4
 
