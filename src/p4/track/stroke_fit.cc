@@ -1,6 +1,7 @@
 #include "p4/track/stroke_fit.h"
 
 #include <ceres/ceres.h>
+#include <ceres/dynamic_autodiff_cost_function.h>
 
 #include <Eigen/Dense>
 #include <array>
@@ -28,27 +29,101 @@ Vec3<T> Acceleration(const Vec3<T>& v, const Vec3<T>& b, const FlightModel& m) {
 
 // Integrates a piece (x[0..2] position, x[3..5] velocity, x[6..8] Magnus vector, at t0) to t,
 // in equal steps of at most max_step (midpoint rule, as the Kalman filter's drag step).
+// Advances (p, v) by dt (either sign) under the Magnus vector b, in equal steps of at most
+// max_step (midpoint rule, as the Kalman filter's drag step).
+template <typename T>
+void Advance(Vec3<T>* p, Vec3<T>* v, const Vec3<T>& b, const T& dt, const FlightModel& m,
+             double max_step) {
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(Value(dt)) / max_step)));
+  const T h = dt / T(steps);
+  for (int i = 0; i < steps; ++i) {
+    const Vec3<T> v_mid = *v + T(0.5) * h * Acceleration(*v, b, m);
+    const Vec3<T> a = Acceleration(v_mid, b, m);
+    *p += h * *v + T(0.5) * h * h * a;
+    *v += h * a;
+  }
+}
+
+// Integrates a piece (x[0..2] position, x[3..5] velocity, x[6..8] Magnus vector, at t0) to t.
 template <typename T>
 void Propagate(const T* x, double t0, const T& t, const FlightModel& m, double max_step,
                Vec3<T>* position, Vec3<T>* velocity) {
-  Vec3<T> p(x[0], x[1], x[2]);
-  Vec3<T> v(x[3], x[4], x[5]);
-  const Vec3<T> b(x[6], x[7], x[8]);
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(Value(t) - t0) / max_step)));
-  const T h = (t - T(t0)) / T(steps);
-  for (int i = 0; i < steps; ++i) {
-    const Vec3<T> v_mid = v + T(0.5) * h * Acceleration(v, b, m);
-    const Vec3<T> a = Acceleration(v_mid, b, m);
-    p += h * v + T(0.5) * h * h * a;
-    v += h * a;
-  }
-  *position = p;
-  *velocity = v;
+  *position = Vec3<T>(x[0], x[1], x[2]);
+  *velocity = Vec3<T>(x[3], x[4], x[5]);
+  Advance(position, velocity, Vec3<T>(x[6], x[7], x[8]), T(t - T(t0)), m, max_step);
 }
 
-// One frame: two bearing residuals across the ray (in sigmas), or the diameter's distance.
+// sqrt(rho(s) / s) for a residual block of squared norm s: scaling the residuals by it makes
+// their squares sum to the robust cost rho (Huber: linear beyond a; Cauchy: logarithmic), as
+// Ceres' HuberLoss(a) and CauchyLoss(b) define it.
+template <typename T>
+T HuberScale(const T& s, double a) {
+  if (s <= T(a * a)) return T(1.0);
+  return ceres::sqrt((T(2.0 * a) * ceres::sqrt(s) - T(a * a)) / s);
+}
+template <typename T>
+T CauchyScale(const T& s, double b) {
+  if (s < T(1e-12)) return T(1.0);
+  return ceres::sqrt(T(b * b) * ceres::log(T(1.0) + s / T(b * b)) / s);
+}
+
+// Every view of a piece in one pass of the integration, outwards from t0 (a block per view would
+// integrate from t0 to each: quadratic in the views). Per view: two bearing residuals across the
+// ray (in sigmas, Huber loss) and the diameter's distance (Cauchy loss; 0 without a diameter),
+// the losses folded into the residuals.
+struct PieceCost {
+  PieceCost(std::vector<BearingObservation> observations, double t0, const FlightModel& m,
+            double step, double huber, double cauchy)
+      : obs(std::move(observations)),
+        t0(t0),
+        model(m),
+        max_step(step),
+        huber(huber),
+        cauchy(cauchy) {
+    for (const auto& o : obs) {
+      e1.push_back(o.direction.unitOrthogonal());
+      e2.push_back(o.direction.cross(e1.back()));
+    }
+  }
+  template <typename T>
+  bool operator()(T const* const* params, T* r) const {
+    const T* x = params[0];
+    const Vec3<T> b(x[6], x[7], x[8]);
+    const int n = static_cast<int>(obs.size());
+    int first_after = 0;
+    while (first_after < n && obs[first_after].t < t0) ++first_after;
+    for (const int dir : {1, -1}) {
+      Vec3<T> p(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
+      double t = t0;
+      for (int k = dir > 0 ? first_after : first_after - 1; k >= 0 && k < n; k += dir) {
+        Advance(&p, &v, b, T(obs[k].t - t), model, max_step);
+        t = obs[k].t;
+        const Vec3<T> to = p - obs[k].origin.cast<T>();
+        const T range = to.norm() + T(1e-9);
+        T* rk = r + 3 * k;
+        rk[0] = e1[k].cast<T>().dot(to) / range / T(obs[k].angle_sigma);
+        rk[1] = e2[k].cast<T>().dot(to) / range / T(obs[k].angle_sigma);
+        const T scale = HuberScale(T(rk[0] * rk[0] + rk[1] * rk[1]), huber);
+        rk[0] *= scale;
+        rk[1] *= scale;
+        rk[2] = T(0.0);
+        if (obs[k].distance > 0.0) {
+          const T d = (range - T(obs[k].distance)) / T(obs[k].distance_sigma);
+          rk[2] = d * CauchyScale(T(d * d), cauchy);
+        }
+      }
+    }
+    return true;
+  }
+  std::vector<BearingObservation> obs;  // in increasing time
+  double t0;
+  FlightModel model;
+  double max_step, huber, cauchy;
+  std::vector<Eigen::Vector3d> e1, e2;
+};
+
+// One frame's two bearing residuals across the ray (in sigmas), for the fit's report.
 struct ObservationCost {
-  enum Part { kBearing, kDistance };
   ObservationCost(const BearingObservation& o, double t0, const FlightModel& m, double step)
       : obs(o), t0(t0), model(m), max_step(step) {
     e1 = o.direction.unitOrthogonal();
@@ -71,24 +146,6 @@ struct ObservationCost {
   FlightModel model;
   double max_step;
   Eigen::Vector3d e1, e2;
-};
-
-struct BearingCost : ObservationCost {
-  using ObservationCost::ObservationCost;
-  template <typename T>
-  bool operator()(const T* piece, T* r) const {
-    Bearing(To(piece), r);
-    return true;
-  }
-};
-
-struct DistanceCost : ObservationCost {
-  using ObservationCost::ObservationCost;
-  template <typename T>
-  bool operator()(const T* piece, T* r) const {
-    r[0] = (To(piece).norm() - T(obs.distance)) / T(obs.distance_sigma);
-    return true;
-  }
 };
 
 // A piece passes its junction (t, x, y, z).
@@ -272,19 +329,11 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   const double step = options.max_step;
   for (size_t i = 0; i < n; ++i) {
     const double t0 = guess.pieces[i].t0;
-    for (const BearingObservation& o : observations[i]) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<BearingCost, 2, 9>(new BearingCost(o, t0, model, step)),
-          new ceres::HuberLoss(options.huber_sigmas), pieces[i].data());
-      // A diameter is often off by much more than its noise (the ball over a player, a racket,
-      // a line): a loss that all but ignores such ones.
-      if (o.distance > 0.0) {
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DistanceCost, 1, 9>(
-                                     new DistanceCost(o, t0, model, step)),
-                                 new ceres::CauchyLoss(options.distance_loss_sigmas),
-                                 pieces[i].data());
-      }
-    }
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<PieceCost, 9>(new PieceCost(
+        observations[i], t0, model, step, options.huber_sigmas, options.distance_loss_sigmas));
+    cost->AddParameterBlock(9);
+    cost->SetNumResiduals(3 * static_cast<int>(observations[i].size()));
+    problem.AddResidualBlock(cost, nullptr, pieces[i].data());
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(new MagnusPrior(
             guess.pieces[i].toss ? options.toss_magnus_sigma : options.magnus_sigma)),
