@@ -14,9 +14,9 @@
 // the lead-in carries the last anchor across the hit; at a bounce the velocity after follows from
 // the velocity before (restitution and friction, give or take the spin); the diameters (noisy, ~3 %
 // of the distance per frame) and gravity weigh in everywhere. Least squares over all pieces and
-// contacts at once (Ceres, automatic derivatives, Huber loss on every bearing, a Cauchy loss on
-// every diameter: neither a stray detection nor a ball merged with a player's arm may pull the
-// flight).
+// contacts at once (Ceres, automatic derivatives, one pass of the integration per piece; Huber
+// loss on every bearing, Cauchy loss on every diameter: neither a stray detection nor a ball
+// merged with a player's arm may pull the flight).
 //
 // World frame of DESIGN.md (z up), metres, seconds, radians. Pure.
 #pragma once
