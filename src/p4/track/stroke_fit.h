@@ -78,13 +78,13 @@ struct LeadIn {
 
 struct StrokeFitOptions {
   FlightModel model;               // gravity, drag, ball radius
-  double magnus_sigma = 1.5;       // 1/s, prior on each component of b (600 rad/s of spin ~ 1.1)
+  double magnus_sigma = 1.0;       // 1/s, prior on each component of b (550 rad/s of spin ~ 1.0)
   double toss_magnus_sigma = 0.1;  // 1/s, the same for a toss
   double toss_horizontal_sigma = 0.5;  // m/s, prior on a toss's horizontal velocity
   double contact_sigma = 0.002;        // m: how closely both pieces pass their contact point
   // The velocity after a bounce vs the bounce map of the velocity before (model.restitution,
   // model.friction): what spin can change, m/s.
-  double bounce_sigma_horizontal = 1.0;
+  double bounce_sigma_horizontal = 0.7;
   double bounce_sigma_vertical = 0.6;
   double huber_sigmas = 3.0;          // bearing residuals beyond this count linearly
   double distance_loss_sigmas = 1.0;  // diameters' distances beyond this count ~logarithmically
