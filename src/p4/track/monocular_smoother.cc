@@ -156,14 +156,18 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
       DecideBend();
     }
   }
-  double open_from = std::numeric_limits<double>::infinity();
+  // Held: the views still open, orphans a window may yet reach, and the rows after the lead-in
+  // while a window may still start from it (not through the pause between points).
   const double now = ToSeconds(held_.back().t);
   std::erase_if(orphans_, [&](const Piece& p) { return now - p.back().t > options_.max_gap_s; });
-  if (!orphans_.empty()) open_from = orphans_.front().front().t;
-  if (lead_in_) return Release(std::min(open_from, lead_in_->after_t + 1e-6));
+  double open_from = std::numeric_limits<double>::infinity();
   if (!window_.empty()) open_from = window_.front().front().t;
   if (!piece_.empty()) open_from = std::min(open_from, piece_.front().t);
   if (!off_.empty()) open_from = std::min(open_from, off_.front().t);
+  if (lead_in_ && std::min(now, open_from) - lead_in_->after_t <= options_.max_gap_s) {
+    open_from = std::min(open_from, lead_in_->after_t + 1e-6);
+  }
+  if (!orphans_.empty()) open_from = std::min(open_from, orphans_.front().front().t);
   return Release(open_from);
 }
 
