@@ -6,7 +6,7 @@
 // overlaps a player). This stage holds the tracker's time-stamps back until the ball's next table
 // bounce, fits the flight since the last one (stroke_fit.h: bearings, diameters, gravity, drag,
 // spin, the table under each bounce, the ball's continuity through hits) and hands them on with
-// the fit's positions and velocities. The delay is one bounce to the next (about 0.3-0.7 s).
+// the fit's positions and velocities. The delay is one bounce to the next (median ~0.4 s).
 //
 // Pieces and junctions: in flight the ball's image path is smooth; a bounce or a hit bends it.
 // Each view is predicted by a quadratic in time through the piece's last `window` views (in the

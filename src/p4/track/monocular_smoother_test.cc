@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "p4/core/table.h"
@@ -102,8 +103,10 @@ TEST(MonocularSmoother, PlacesTheBallAlongTheRayFarBetterThanTheDiameter) {
   MonocularSmoother smoother(scene.camera);
   std::vector<FrameSetResult> out;
   double released_first_at = -1.0;
+  std::vector<double> delays;  // s from a row's time to the time-stamp that released it
   for (const FrameSetResult& r : scene.results) {
     auto done = smoother.Push(r);
+    for (const auto& d : done) delays.push_back(ToSeconds(r.t - d.t));
     if (released_first_at < 0.0 && !done.empty()) {
       for (const auto& d : done) {
         if (d.state) released_first_at = ToSeconds(r.t);
@@ -144,8 +147,14 @@ TEST(MonocularSmoother, PlacesTheBallAlongTheRayFarBetterThanTheDiameter) {
   EXPECT_GT(recovered, 0.8 * missed);
   EXPECT_GE(smoother.bounces_found(), 0.8 * scene.table_bounces);
   EXPECT_GT(smoother.windows_fitted(), 3);
-  // Rows are held back until the flight is fitted: the first leaves after the first bounce.
+  // Rows are held back until the flight is fitted: the first leaves after the first bounce,
+  // and none waits longer than a window without a bounce may last.
   EXPECT_GT(released_first_at, 0.0);
+  std::sort(delays.begin(), delays.end());
+  const double median = delays[delays.size() / 2], p95 = delays[delays.size() * 95 / 100];
+  std::printf("delay: median %.2f s, p95 %.2f s, max %.2f s\n", median, p95, delays.back());
+  EXPECT_LT(median, 0.7);
+  EXPECT_LE(delays.back(), MonocularSmootherOptions{}.max_window_s + 0.2);
 }
 
 TEST(MonocularSmoother, PassesThroughWhatItCannotUse) {
