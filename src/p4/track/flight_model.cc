@@ -7,16 +7,11 @@ namespace p4::track {
 
 Vector6d DragStep(const Vector6d& x, double dt, double gravity, double k,
                   Eigen::Matrix3d* accel_jacobian) {
-  const Eigen::Vector3d g(0.0, 0.0, -gravity);
-  const auto accel = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d {
-    return g - k * v.norm() * v;
-  };
-  const Eigen::Vector3d v0 = x.tail<3>();
-  const Eigen::Vector3d v_mid = v0 + 0.5 * dt * accel(v0);
-  const Eigen::Vector3d a = accel(v_mid);
+  Eigen::Vector3d p = x.head<3>(), v = x.tail<3>();
+  const Eigen::Vector3d v_mid =
+      MidpointStep<double>(&p, &v, Eigen::Vector3d::Zero(), dt, gravity, k);
   Vector6d out;
-  out.head<3>() = x.head<3>() + dt * v0 + 0.5 * dt * dt * a;
-  out.tail<3>() = v0 + dt * a;
+  out << p, v;
   if (accel_jacobian) {
     const double speed = v_mid.norm();
     *accel_jacobian = -k * speed * Eigen::Matrix3d::Identity();

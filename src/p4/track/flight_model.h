@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "p4/track/kalman_filter.h"
 
@@ -17,8 +18,28 @@ struct FlightModel {
   double friction = 0.25;
 };
 
-// One step of gravity and air drag (a = g - k |v| v, evaluated at the mid-step velocity: second
-// order). Writes d a / d v at that velocity to *accel_jacobian when given.
+// One step h (either sign) of position p and velocity v under gravity, air drag and a Magnus
+// acceleration b x v (a = g - k |v| v + b x v, evaluated at the mid-step velocity: second order).
+// Returns that mid-step velocity. Templated for the stroke fit's automatic derivatives.
+template <typename T>
+Eigen::Matrix<T, 3, 1> MidpointStep(Eigen::Matrix<T, 3, 1>* p, Eigen::Matrix<T, 3, 1>* v,
+                                    const Eigen::Matrix<T, 3, 1>& b, const T& h, double gravity,
+                                    double drag_per_mass) {
+  using Vec3 = Eigen::Matrix<T, 3, 1>;
+  const auto accel = [&](const Vec3& u) -> Vec3 {
+    Vec3 a = -T(drag_per_mass) * u.norm() * u + b.cross(u);
+    a.z() -= T(gravity);
+    return a;
+  };
+  const Vec3 v_mid = *v + T(0.5) * h * accel(*v);
+  const Vec3 a = accel(v_mid);
+  *p = *p + h * *v + T(0.5) * h * h * a;
+  *v = *v + h * a;
+  return v_mid;
+}
+
+// One step of gravity and air drag (MidpointStep without spin). Writes d a / d v at the mid-step
+// velocity to *accel_jacobian when given.
 Vector6d DragStep(const Vector6d& state, double dt, double gravity, double drag_per_mass,
                   Eigen::Matrix3d* accel_jacobian = nullptr);
 

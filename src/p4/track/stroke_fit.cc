@@ -19,29 +19,14 @@ double Value(const ceres::Jet<J, N>& x) {
 template <typename T>
 using Vec3 = Eigen::Matrix<T, 3, 1>;
 
-// Gravity, drag and Magnus: a = g - k |v| v + b x v.
-template <typename T>
-Vec3<T> Acceleration(const Vec3<T>& v, const Vec3<T>& b, const FlightModel& m) {
-  Vec3<T> a = -T(m.drag_per_mass) * v.norm() * v + b.cross(v);
-  a.z() -= T(m.gravity);
-  return a;
-}
-
-// Integrates a piece (x[0..2] position, x[3..5] velocity, x[6..8] Magnus vector, at t0) to t,
-// in equal steps of at most max_step (midpoint rule, as the Kalman filter's drag step).
 // Advances (p, v) by dt (either sign) under the Magnus vector b, in equal steps of at most
-// max_step (midpoint rule, as the Kalman filter's drag step).
+// max_step (the Kalman filter's midpoint step, flight_model.h).
 template <typename T>
 void Advance(Vec3<T>* p, Vec3<T>* v, const Vec3<T>& b, const T& dt, const FlightModel& m,
              double max_step) {
   const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(Value(dt)) / max_step)));
   const T h = dt / T(steps);
-  for (int i = 0; i < steps; ++i) {
-    const Vec3<T> v_mid = *v + T(0.5) * h * Acceleration(*v, b, m);
-    const Vec3<T> a = Acceleration(v_mid, b, m);
-    *p += h * *v + T(0.5) * h * h * a;
-    *v += h * a;
-  }
+  for (int i = 0; i < steps; ++i) MidpointStep(p, v, b, h, m.gravity, m.drag_per_mass);
 }
 
 // Integrates a piece (x[0..2] position, x[3..5] velocity, x[6..8] Magnus vector, at t0) to t.
