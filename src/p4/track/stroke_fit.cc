@@ -107,32 +107,6 @@ struct PieceCost {
   std::vector<Eigen::Vector3d> e1, e2;
 };
 
-// One frame's two bearing residuals across the ray (in sigmas), for the fit's report.
-struct ObservationCost {
-  ObservationCost(const BearingObservation& o, double t0, const FlightModel& m, double step)
-      : obs(o), t0(t0), model(m), max_step(step) {
-    e1 = o.direction.unitOrthogonal();
-    e2 = o.direction.cross(e1);
-  }
-  template <typename T>
-  Vec3<T> To(const T* piece) const {
-    Vec3<T> p, v;
-    Propagate(piece, t0, T(obs.t), model, max_step, &p, &v);
-    return p - obs.origin.cast<T>();
-  }
-  template <typename T>
-  void Bearing(const Vec3<T>& to, T* r) const {
-    const T range = to.norm() + T(1e-9);
-    r[0] = e1.cast<T>().dot(to) / range / T(obs.angle_sigma);
-    r[1] = e2.cast<T>().dot(to) / range / T(obs.angle_sigma);
-  }
-  BearingObservation obs;
-  double t0;
-  FlightModel model;
-  double max_step;
-  Eigen::Vector3d e1, e2;
-};
-
 // A piece passes its junction (t, x, y, z).
 struct JunctionCost {
   JunctionCost(double t0, double sigma, const FlightModel& m, double step)
@@ -406,11 +380,13 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
     piece.toss = guess.pieces[i].toss;
     for (int k = 0; k < 6; ++k) piece.state(k) = pieces[i][k];
     for (int k = 0; k < 3; ++k) piece.magnus(k) = pieces[i][6 + k];
-    for (const BearingObservation& o : observations[i]) {
-      const ObservationCost cost(o, piece.t0, model, step);
-      double r[2];
-      cost.Bearing(cost.To(pieces[i].data()), r);
-      sum += r[0] * r[0] + r[1] * r[1];
+    // The report: the fit's own bearing residuals, without the losses (thresholds never met).
+    const PieceCost report(observations[i], piece.t0, model, step, 1e100, 1e100);
+    std::vector<double> r(3 * observations[i].size());
+    const double* params[] = {pieces[i].data()};
+    report(params, r.data());
+    for (size_t k = 0; k < observations[i].size(); ++k) {
+      sum += r[3 * k] * r[3 * k] + r[3 * k + 1] * r[3 * k + 1];
       count += 2;
     }
   }
