@@ -47,11 +47,14 @@ bool MonocularSmootherOptions::IsValid(std::string* error) const {
 MonocularSmoother::MonocularSmoother(const Camera& camera, const MonocularSmootherOptions& options)
     : camera_(camera), options_(options) {}
 
-double MonocularSmoother::OffBy(const Piece& piece, const View& view) const {
-  if (piece.size() < 4) return 0.0;
+std::optional<Eigen::Vector2d> MonocularSmoother::PathAt(const Piece& piece, double t) const {
+  if (piece.size() < 4) return std::nullopt;
   const size_t n = std::min<size_t>(piece.size(), options_.window);
-  const std::span<const View> last(piece.end() - n, piece.end());
-  return (QuadraticAt(last, view.t) - view.ideal_px).norm();
+  return QuadraticAt(std::span(piece.end() - n, piece.end()), t);
+}
+
+Eigen::Vector2d MonocularSmoother::IdealPixel(const Eigen::Vector2d& pixel) const {
+  return camera_.fx * camera_.NormalizedFromPixel(pixel);
 }
 
 std::optional<MonocularSmoother::View> MonocularSmoother::ViewFrom(const FrameSetResult& result,
@@ -61,7 +64,7 @@ std::optional<MonocularSmoother::View> MonocularSmoother::ViewFrom(const FrameSe
   if (!sphere) return std::nullopt;
   View v;
   v.t = ToSeconds(result.t);
-  v.ideal_px = camera_.fx * camera_.NormalizedFromPixel(d.pixel);
+  v.ideal_px = IdealPixel(d.pixel);
   BearingObservation& o = v.bearing;
   o.t = v.t;
   o.origin = camera_.Center();
@@ -81,22 +84,19 @@ std::optional<MonocularSmoother::View> MonocularSmoother::ViewOf(
   return std::nullopt;
 }
 
-std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(FrameSetResult* result) const {
+std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(
+    FrameSetResult* result, const std::optional<Eigen::Vector2d>& path) const {
   std::optional<View> view = ViewOf(*result);
-  if (piece_.size() < 4 || !off_.empty()) return view;
-  // Where the open piece's path is at this time: a candidate there is the ball, whether the
-  // filter took it or not (from one camera a filter that went astray in depth gates the ball
-  // out, while its image path goes on plainly).
-  const size_t n = std::min<size_t>(piece_.size(), options_.window);
-  const Eigen::Vector2d expected =
-      QuadraticAt(std::span(piece_.end() - n, piece_.end()), ToSeconds(result->t));
+  if (!path || !off_.empty()) return view;
+  // A candidate on the open piece's path is the ball, whether the filter took it or not (from
+  // one camera a filter that went astray in depth gates the ball out, while its image path goes
+  // on plainly).
+  const Eigen::Vector2d& expected = *path;
   if (view && (view->ideal_px - expected).norm() <= options_.kink_px) return view;
   int best = -1;
   double best_d = options_.adopt_px;
   for (int k = 0; k < static_cast<int>(result->detections.size()); ++k) {
-    const Eigen::Vector2d px =
-        camera_.fx * camera_.NormalizedFromPixel(result->detections[k].pixel);
-    const double d = (px - expected).norm();
+    const double d = (IdealPixel(result->detections[k].pixel) - expected).norm();
     if (d <= best_d) best_d = d, best = k;
   }
   if (best < 0) return view;
@@ -123,7 +123,9 @@ std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(FrameSetResult* 
 
 std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
   held_.push_back(std::move(result));
-  const std::optional<View> view = Adopt(&held_.back());
+  // Where the open piece's path is at this time (with 4 views or more).
+  const std::optional<Eigen::Vector2d> path = PathAt(piece_, ToSeconds(held_.back().t));
+  const std::optional<View> view = Adopt(&held_.back(), path);
   if (view) {
     const View* last = !off_.empty() ? &off_.back() : !piece_.empty() ? &piece_.back() : nullptr;
     const double window_start = lead_in_           ? lead_in_->after_t
@@ -136,7 +138,8 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
                !pending_bend_) {
       FitWindow(false);  // no bounce for long: hand the window on, the chain goes on
     }
-    const double off_by = OffBy(piece_, *view);
+    // (A gap just ended the piece the path was of: a new one starts with this view.)
+    const double off_by = path && !piece_.empty() ? (*path - view->ideal_px).norm() : 0.0;
     if (off_by > options_.kink_px) {
       off_.push_back(*view);
       // A bend leaves the path ever farther; a view pulled aside by something next to the ball

@@ -91,9 +91,12 @@ class MonocularSmoother {
   std::optional<View> ViewOf(const FrameSetResult& result) const;
   // This time-stamp's view of the ball: the candidate on the open piece's path, which may be one
   // the tracker did not take (it is then marked accepted and the row measured).
-  std::optional<View> Adopt(FrameSetResult* result) const;
-  // How far (undistorted px) a view is from the piece's path.
-  double OffBy(const Piece& piece, const View& view) const;
+  std::optional<View> Adopt(FrameSetResult* result,
+                            const std::optional<Eigen::Vector2d>& path) const;
+  // The piece's path (undistorted px) at t: the quadratic through its last `window` views;
+  // nullopt below 4 views.
+  std::optional<Eigen::Vector2d> PathAt(const Piece& piece, double t) const;
+  Eigen::Vector2d IdealPixel(const Eigen::Vector2d& pixel) const;  // undistorted, in px
   // Ends the open piece; `next`: the views that begin the next one (empty: the chain breaks).
   void EndPiece(const Piece& next);
   // Judges the bend between the window's last piece and the open one; a bounce closes the window.
