@@ -51,10 +51,7 @@ class CalibrateCommand : public ::testing::Test {
     delete dir_;
   }
   static nlohmann::json Eval(const std::string& run) {
-    std::string out;
-    EXPECT_EQ(P4track("eval --truth " + sim_.string() + " --run " + (*dir_ / run).string(), &out),
-              0);
-    return nlohmann::json::parse(out);
+    return p4::testing::EvalReport(sim_, *dir_ / run);
   }
   static fs::path* dir_;
   static fs::path sim_;

@@ -1,12 +1,14 @@
 // Helpers of the end-to-end tests that run the p4track program (P4TRACK_EXE) itself.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
@@ -29,6 +31,15 @@ inline int P4track(const std::string& args, std::string* output = nullptr) {
   if (output) *output = Slurp(log);
   std::filesystem::remove(log);
   return WEXITSTATUS(status);
+}
+
+// `p4track eval` of a run against a simulation: its JSON report (a failed eval fails the test
+// and its message does not parse).
+inline nlohmann::json EvalReport(const std::filesystem::path& sim,
+                                 const std::filesystem::path& run) {
+  std::string out;
+  EXPECT_EQ(P4track("eval --truth " + sim.string() + " --run " + run.string(), &out), 0) << out;
+  return nlohmann::json::parse(out);
 }
 
 }  // namespace p4::testing

@@ -15,6 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using p4::testing::EvalReport;
 using p4::testing::P4track;
 using p4::testing::Slurp;
 
@@ -42,9 +43,7 @@ fs::path TrackCommand::sim_;
 fs::path TrackCommand::run_;
 
 TEST_F(TrackCommand, MeetsTheAccuracyTargets) {
-  std::string out;
-  ASSERT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run_.string(), &out), 0) << out;
-  const auto report = nlohmann::json::parse(out);
+  const auto report = EvalReport(sim_, run_);
   std::printf("%s\n", report.dump().c_str());
   EXPECT_GT(report["frames_seen"].get<int>(), 500);
   EXPECT_LE(report["position_rmse_mm"].get<double>(), 5.0);
@@ -75,9 +74,7 @@ class OneCamera : public ::testing::Test {
     EXPECT_EQ(P4track("track --rig " + (sim_ / "rig.yaml").string() + " --out " + run.string() +
                       " " + (sim_ / "cam0.mp4").string() + flags),
               0);
-    std::string out;
-    EXPECT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run.string(), &out), 0) << out;
-    return nlohmann::json::parse(out);
+    return EvalReport(sim_, run);
   }
   static fs::path* dir_;
   static fs::path sim_;
@@ -119,9 +116,7 @@ TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
 
 // The game layer end to end: events from the track, the referee's points and score.
 TEST_F(TrackCommand, TheRefereeScoresTheSimulatedPoints) {
-  std::string out;
-  ASSERT_EQ(P4track("eval --truth " + sim_.string() + " --run " + run_.string(), &out), 0) << out;
-  const auto report = nlohmann::json::parse(out);
+  const auto report = EvalReport(sim_, run_);
   EXPECT_GE(report["bounces_truth"].get<int>(), 5);
   EXPECT_GE(report["bounce_recall"].get<double>(), 0.99);
   EXPECT_GE(report["bounce_precision"].get<double>(), 0.99);
