@@ -1,5 +1,5 @@
 // The tracker's model of the ball in flight and at the table bounce, shared by the Kalman filter,
-// the ball tracker and the monocular fit (never by the simulator, whose physics is the truth).
+// the ball tracker and the stroke fit (never by the simulator, whose physics is the truth).
 // World frame (z up), metres, seconds.
 #pragma once
 
