@@ -27,7 +27,7 @@ struct TrackArgs {
   std::string first_server = "A";
   int best_of = 5;
   bool no_referee = false;
-  bool ui = false, realtime = false;
+  bool ui = false, realtime = false, loop = false;
   std::string layout;
   WebFlags web;
 };
@@ -59,6 +59,9 @@ int Run(const TrackArgs& a) {
   RunExtras extras;
   extras.realtime = a.realtime;
   extras.smooth_one_camera = !a.no_smoothing;
+  extras.loop = a.loop;
+  // Ctrl-C ends the run as the sources' end would: held rows written, the score final.
+  extras.stop = &CatchInterrupts();
   if (!a.layout.empty() && !a.ui)
     throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
   if (a.ui) {
@@ -77,7 +80,8 @@ int Run(const TrackArgs& a) {
       [](int64_t n) { spdlog::info("tracking: {} frame sets", n); }, extras);
   for (const auto& e : summary.sources_ended_with_error) spdlog::warn("source ended: {}", e);
   spdlog::info("{}", summary.Report());
-  if (web) {
+  if (summary.stopped) spdlog::info("stopped by Ctrl-C; the run's files are complete");
+  if (web && !summary.stopped) {
     spdlog::info(
         "the sources have ended; the live view stays at {} until Ctrl-C (replay the run "
         "with: p4track replay {})",
@@ -145,6 +149,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_flag("--realtime", args->realtime,
                 "Pace video files at their own frame rate (a recording shown as live)");
+  cmd->add_flag("--loop", args->loop,
+                "Play the video files again and again (times continue) until Ctrl-C; with "
+                "--realtime --ui, a recorded match shown for as long as anyone watches");
   args->web.Add(cmd);
   return [args]() { return Run(*args); };
 }

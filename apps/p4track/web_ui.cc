@@ -12,7 +12,13 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-void OnSignal(int) { g_interrupted = true; }
+// The first signal asks politely; a second one ends the program at once.
+void OnSignal(int signal) {
+  if (g_interrupted.exchange(true)) {
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
+}
 
 }  // namespace
 
@@ -44,13 +50,15 @@ void StartAndAnnounce(server::WebServer* server, const WebFlags& flags, const st
   spdlog::info("{}: {}", what, server->Url());
 }
 
-void WaitForInterrupt() {
-  g_interrupted = false;
+const std::atomic<bool>& CatchInterrupts() {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  while (!g_interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  return g_interrupted;
+}
+
+void WaitForInterrupt() {
+  const std::atomic<bool>& interrupted = CatchInterrupts();
+  while (!interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
 }  // namespace p4::app

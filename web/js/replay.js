@@ -178,6 +178,7 @@ window.p4replay = {
   ready: true, t0, t1, rows: rows.length, events: events.length,
   seek, play, pause, setSpeed,
   time: () => now, speed: () => speed, playing: () => playing,
+  clock: () => ({ time: now, wall: lastWall, playing }),
   ballPosition: () => (view.ball.visible ? [view.ball.position.x, view.ball.position.y, view.ball.position.z] : null),
   ballOnScreen: () => view.ballOnScreen(),
   score: () => scoreAt(now),

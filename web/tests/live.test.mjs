@@ -14,33 +14,36 @@ try {
   const track = out => ['track', '--rig', join(dir, 'sim', 'rig.yaml'), '--out', join(dir, out),
     join(dir, 'sim', 'cam0.mp4'), join(dir, 'sim', 'cam1.mp4')];
 
-  // 1. The page, on a run paced at the video's own rate.
-  server = await startServing([...track('run_live'), '--ui', '--realtime', '--layout', join(dir, 'sim', 'markers.yaml')], 'live view');
+  // 1. The page, on a run paced at the video's own rate and looping until the page has shown all
+  //    it must, however long the browser takes to start on this machine (no race with the run).
+  server = await startServing([...track('run_live'), '--ui', '--realtime', '--loop', '--layout', join(dir, 'sim', 'markers.yaml')], 'live view');
   browser = await launchBrowser();
   const errors = [];
   const page = await openPage(browser, server.url, errors);
   await page.waitForFunction(() => window.p4live && window.p4live.states > 20 && window.p4live.pictures >= 4,
-    null, { timeout: 30000 });
+    null, { timeout: 120000 });
   check(await page.locator('.tile').count() === 2, 'one tile per camera');
   await page.waitForFunction(() => [...document.querySelectorAll('.tile img')].every(i => i.complete && i.naturalWidth === 640),
-    null, { timeout: 10000 });
+    null, { timeout: 120000 });
   check(true, 'each tile shows its camera\'s picture (640 px wide)');
   check(await page.locator('#view3d canvas').count() === 1, 'a 3D canvas');
   await page.waitForFunction(() => window.p4live.state && window.p4live.state.ball &&
-    window.p4live.state.cameras.every(c => c.roi && c.detections.some(d => d.accepted)), null, { timeout: 20000 });
+    window.p4live.state.cameras.every(c => c.roi && c.detections.some(d => d.accepted)), null, { timeout: 120000 });
   const state = await page.evaluate(() => window.p4live.state);
   check(state.cameras.every(c => c.epipolar.length >= 1), 'each camera gets the epipolar line of the ball seen by the other');
   check(await page.locator('#score .points').count() === 2, 'the scoreboard');
   // The calibration markers on the table: found in each camera's picture where the rig puts them.
   await page.waitForFunction(() => window.p4live.markerError.length === 2 &&
-    window.p4live.markerError.every(e => e !== null), null, { timeout: 20000 });
+    window.p4live.markerError.every(e => e !== null), null, { timeout: 120000 });
   const markerError = await page.evaluate(() => window.p4live.markerError);
   check(markerError.every(e => e < 2.0), `markers found where the rig projects them (${markerError.map(e => e.toFixed(2)).join(', ')} px)`);
   await page.screenshot({ path: join(ARTIFACTS, 'live.png') });
   check(errors.length === 0, `no script errors (${errors.join('; ')})`);
   await browser.close();
   browser = null;
-  await stop(server.proc);
+  // Ctrl-C ends a looping run cleanly: the exit code is 0 and the summary says so.
+  const code = await stop(server.proc);
+  check(code === 0 && /stopped by Ctrl-C/.test(server.log.join('')), `Ctrl-C ends the looping run (exit ${code})`);
   server = null;
 
   // 2. 20 clients, each polling the state at 20 Hz and every camera's picture at 10 Hz as the page

@@ -7,8 +7,11 @@
 
 namespace p4 {
 
-FrameSetReader::FrameSetReader(const std::vector<std::string>& sources) {
+FrameSetReader::FrameSetReader(const std::vector<std::string>& sources, bool loop) : loop_(loop) {
   for (const auto& s : sources) {
+    if (loop && VideoReader::IsLive(s)) {
+      throw Error(s + ": a live source cannot loop (only video files start again)");
+    }
     Source source;
     source.name = s;
     source.reader = std::make_unique<VideoReader>(s);
@@ -16,7 +19,8 @@ FrameSetReader::FrameSetReader(const std::vector<std::string>& sources) {
   }
 }
 
-bool FrameSetReader::Next(FrameSet* set) {
+bool FrameSetReader::ReadAll() {
+  bool any = false;
   for (Source& s : sources_) {
     if (s.consumed && !s.ended) {
       try {
@@ -26,15 +30,44 @@ bool FrameSetReader::Next(FrameSet* set) {
         errors_.push_back(e.what());
         s.has_frame = false;
       }
+      if (s.has_frame) {
+        s.pts += shift_;
+        if (!any_frame_ || s.pts < first_pts_) first_pts_ = s.pts;
+        last_pts_ = any_frame_ ? std::max(last_pts_, s.pts) : s.pts;
+        any_frame_ = true;
+      }
       s.ended = !s.has_frame;
       s.consumed = false;
     }
+    any = any || (s.has_frame && !s.consumed);
   }
+  return any;
+}
+
+bool FrameSetReader::StartAgain() {
+  if (!loop_ || !any_frame_) return false;
+  double fps = 0.0;
+  for (Source& s : sources_) {
+    s.reader = std::make_unique<VideoReader>(s.name);
+    s.has_frame = false;
+    s.consumed = true;
+    s.ended = false;
+    fps = std::max(fps, s.reader->info().fps);
+  }
+  // The next pass starts one frame period after the last frame of this one.
+  const TimeNs period = FromSeconds(1.0 / (fps > 0 ? fps : 30.0));
+  // (first_pts_ is the first pass's first frame: the files' own start.)
+  shift_ = last_pts_ + period - first_pts_;
+  ++loops_;
+  return true;
+}
+
+bool FrameSetReader::Next(FrameSet* set) {
+  if (!ReadAll() && !(StartAgain() && ReadAll())) return false;
   std::optional<TimeNs> t;
   for (const Source& s : sources_) {
     if (s.has_frame && !s.consumed && (!t || s.pts < *t)) t = s.pts;
   }
-  if (!t) return false;
   set->t = *t;
   set->images.assign(sources_.size(), std::nullopt);
   for (std::size_t i = 0; i < sources_.size(); ++i) {

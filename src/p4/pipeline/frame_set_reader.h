@@ -3,6 +3,9 @@
 // frame period of it. A source that ends early, or lacks a frame, leaves its camera out of the
 // set; the run goes on until every source has ended. A live source (device, stream) that fails
 // while reading ends there too, with its error kept in ended_with_error().
+// With `loop`, video files start again when every source has ended, their times continuing
+// (shifted by the span played plus one frame period), so a recording plays for as long as the
+// run lasts (a kiosk at a club, or a live view that must stay up until a viewer has seen it).
 #pragma once
 
 #include <memory>
@@ -23,14 +26,16 @@ struct FrameSet {
 
 class FrameSetReader {
  public:
-  // Opens every source; throws p4::Error naming the one that fails.
-  explicit FrameSetReader(const std::vector<std::string>& sources);
+  // Opens every source; throws p4::Error naming the one that fails, or when `loop` is asked of a
+  // live source (it cannot start again).
+  explicit FrameSetReader(const std::vector<std::string>& sources, bool loop = false);
 
   bool Next(FrameSet* set);
   int size() const { return static_cast<int>(sources_.size()); }
   const VideoInfo& info(int i) const { return sources_[i].reader->info(); }
   const std::string& name(int i) const { return sources_[i].name; }
   const std::vector<std::string>& ended_with_error() const { return errors_; }
+  int loops() const { return loops_; }  // times the files have started again
 
  private:
   struct Source {
@@ -42,8 +47,15 @@ class FrameSetReader {
     bool consumed = true;
     bool ended = false;
   };
+  bool ReadAll();   // the next frame of every source whose last one was used
+  bool StartAgain();  // loop: reopens every file, times shifted past the last one
+
   std::vector<Source> sources_;
   std::vector<std::string> errors_;
+  bool loop_ = false;
+  int loops_ = 0;
+  TimeNs first_pts_ = 0, last_pts_ = 0, shift_ = 0;
+  bool any_frame_ = false;
 };
 
 }  // namespace p4

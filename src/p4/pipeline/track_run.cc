@@ -34,6 +34,8 @@ std::string TrackRunSummary::Report() const {
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
+  if (loops > 0) report += fmt::format("; the files played {} times", loops + 1);
+  if (stopped) report += "; stopped before the sources ended";
   if (worst_lag_ms > 0.0) {
     report += fmt::format("; real time kept: worst lag {:.1f} ms, {} frame sets late", worst_lag_ms,
                           late);
@@ -52,7 +54,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::string why;
   if (!options.IsValid(&why)) throw Error("tracking options: " + why);
   if (!game.IsValid(&why)) throw Error("game options: " + why);
-  FrameSetReader reader(sources);
+  FrameSetReader reader(sources, extras.loop);
   for (int i = 0; i < reader.size(); ++i) {
     const VideoInfo& info = reader.info(i);
     const Camera& camera = rig.cameras[i];
@@ -122,6 +124,10 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   auto paced_from = start;
   TimeNs last_t = 0;
   while (reader.Next(&set)) {
+    if (extras.stop && extras.stop->load()) {
+      summary.stopped = true;
+      break;
+    }
     if (!first_t) {
       first_t = set.t;
       paced_from = std::chrono::steady_clock::now();  // the clock starts with the first picture
@@ -177,6 +183,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     writer.WriteScore(ScoreToJson(score, referee.points_played(), game.players));
   }
   summary.sources_ended_with_error = reader.ended_with_error();
+  summary.loops = reader.loops();
   summary.video_seconds = first_t ? ToSeconds(last_t - *first_t) : 0.0;
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

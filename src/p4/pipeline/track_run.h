@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,6 +37,11 @@ struct RunExtras {
   // A one-camera rig's rows are refined over each stroke (track::MonocularSmoother) before they
   // are written and scored: about one stroke later (the live view is not delayed).
   bool smooth_one_camera = true;
+  // Play video files again and again until stopped (FrameSetReader's loop).
+  bool loop = false;
+  // Set by another thread (e.g. on Ctrl-C): the run ends after the frame set in hand, its files
+  // finished as at the sources' end (held rows written, the last score). May be null.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct TrackRunSummary {
@@ -48,6 +54,8 @@ struct TrackRunSummary {
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
   std::vector<std::string> sources_ended_with_error;  // live sources that failed mid-run
+  bool stopped = false;                               // ended by RunExtras::stop
+  int loops = 0;                                      // times the files started again
   int64_t bounces = 0, hits = 0, points = 0;
   // --realtime only: how far processing fell behind the video's own clock.
   double worst_lag_ms = 0.0;

@@ -1,0 +1,76 @@
+#include "p4/pipeline/frame_set_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "p4/core/error.h"
+#include "p4/io/video_writer.h"
+
+namespace p4 {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMs = 1.001e-3;  // Matroska's time resolution
+
+// A clip of `frames` grey frames of 64x48 at `fps`, lossless (frame k stamped k / fps, which
+// Matroska keeps to the millisecond).
+std::string WriteClip(const std::string& name, int fps, int frames) {
+  const std::string path = (fs::temp_directory_path() / name).string();
+  VideoWriterOptions options;
+  options.width = 64;
+  options.height = 48;
+  options.fps = fps;
+  options.codec = VideoCodec::kFFV1;
+  VideoWriter writer(path, options);
+  I420Image image(64, 48);
+  for (int k = 0; k < frames; ++k) writer.Write(image);
+  writer.Close();
+  return path;
+}
+
+TEST(FrameSetReader, GroupsTheCamerasFramesByTime) {
+  const std::string a = WriteClip("p4_fsr_a.mkv", 30, 6), b = WriteClip("p4_fsr_b.mkv", 30, 4);
+  FrameSetReader reader({a, b});
+  FrameSet set;
+  std::vector<TimeNs> times;
+  int both = 0;
+  while (reader.Next(&set)) {
+    times.push_back(set.t);
+    both += set.images[0].has_value() && set.images[1].has_value();
+  }
+  ASSERT_EQ(times.size(), 6u);  // the shorter source leaves its camera out of the last sets
+  EXPECT_EQ(both, 4);
+  EXPECT_NEAR(ToSeconds(times[5] - times[0]), 5.0 / 30, kMs);
+  EXPECT_EQ(reader.loops(), 0);
+}
+
+TEST(FrameSetReader, LoopPlaysTheFilesAgainWithTimeGoingOn) {
+  const std::string a = WriteClip("p4_fsr_la.mkv", 30, 5), b = WriteClip("p4_fsr_lb.mkv", 30, 5);
+  FrameSetReader reader({a, b}, /*loop=*/true);
+  FrameSet set;
+  std::vector<TimeNs> times;
+  for (int k = 0; k < 17 && reader.Next(&set); ++k) {
+    EXPECT_TRUE(set.images[0].has_value() && set.images[1].has_value()) << "set " << k;
+    times.push_back(set.t);
+  }
+  ASSERT_EQ(times.size(), 17u);  // it does not end by itself
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    // One frame period between every two sets, across the loops' seams too.
+    EXPECT_NEAR(ToSeconds(times[k] - times[k - 1]), 1.0 / 30, kMs) << "set " << k;
+  }
+  EXPECT_EQ(reader.loops(), 3);
+}
+
+TEST(FrameSetReader, ALiveSourceCannotLoop) {
+  try {
+    FrameSetReader reader({"/dev/video97"}, /*loop=*/true);
+    FAIL() << "a live source was accepted for a loop";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/video97"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace p4
