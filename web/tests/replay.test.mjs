@@ -3,7 +3,7 @@
 // trajectory.csv says (and on the screen where the 3D view projects it, in the ball's colour).
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { check, tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, ARTIFACTS } from './support.mjs';
+import { check, tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, ARTIFACTS, HANG_MS } from './support.mjs';
 
 const dir = tempDir('replay');
 let server, browser;
@@ -15,7 +15,7 @@ try {
   browser = await launchBrowser();
   const errors = [];
   const page = await openPage(browser, server.url, errors);
-  await page.waitForFunction(() => window.p4replay && window.p4replay.ready, null, { timeout: 120000 });
+  await page.waitForFunction(() => window.p4replay && window.p4replay.ready, null, { timeout: HANG_MS });
 
   // A measured row in the middle of the run.
   const rows = readFileSync(join(dir, 'run', 'trajectory.csv'), 'utf8').trim().split('\n').slice(1)
@@ -51,9 +51,9 @@ try {
   const advance = async (speed, span) => {
     await page.selectOption('#speed', String(speed));
     await page.evaluate(t => { window.p4replay.seek(t); window.p4replay.play(); }, rows[0][0]);
-    await page.waitForFunction(() => { const c = window.p4replay.clock(); return c.playing && c.wall !== null; }, null, { timeout: 60000 });
+    await page.waitForFunction(() => { const c = window.p4replay.clock(); return c.playing && c.wall !== null; }, null, { timeout: HANG_MS });
     const a = await page.evaluate(() => window.p4replay.clock());
-    await page.waitForFunction(s => window.p4replay.clock().time >= s, a.time + span, { timeout: 60000 });
+    await page.waitForFunction(s => window.p4replay.clock().time >= s, a.time + span, { timeout: HANG_MS });
     const b = await page.evaluate(() => window.p4replay.clock());
     await page.evaluate(() => window.p4replay.pause());
     return (b.time - a.time) / ((b.wall - a.wall) / 1000);

@@ -1,5 +1,7 @@
 // Shared by the browser tests: p4track started as a user would, Debian's Chromium driven by
-// playwright-core, screenshots kept as test artefacts.
+// playwright-core, screenshots kept as test artefacts. Tests wait on conditions; the time-outs
+// are ceilings that only catch a hang (a loaded 2-core machine can take a minute to load a page).
+export const HANG_MS = 180000;
 import { spawn, execFileSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -28,7 +30,7 @@ export function startServing(args, marker) {
   const proc = spawn(P4TRACK, [...args, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
   const log = [];
   return new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`no URL from p4track: ${log.join('')}`)), 20000);
+    const timer = setTimeout(() => reject(new Error(`no URL from p4track: ${log.join('')}`)), HANG_MS);
     const onData = chunk => {
       log.push(chunk.toString());
       const m = log.join('').match(new RegExp(`${marker}.*?(http://127\\.0\\.0\\.1:\\d+/)`));
@@ -57,6 +59,8 @@ export async function launchBrowser() {
 // A page that fails the test on any script error.
 export async function openPage(browser, url, errors) {
   const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  page.setDefaultTimeout(HANG_MS);
+  page.setDefaultNavigationTimeout(HANG_MS);
   page.on('pageerror', e => errors.push(e.message));
   page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
   await page.goto(url);
