@@ -23,6 +23,7 @@ int Run(int argc, char** argv) {
       {"calibrate", p4::app::AddCalibrateCommand(app)},
       {"replay", p4::app::AddReplayCommand(app)},
       {"bench", p4::app::AddBenchCommand(app)},
+      {"eval-suite", p4::app::AddEvalSuiteCommand(app)},
   };
   try {
     app.parse(argc, argv);

@@ -17,6 +17,7 @@
 #include "p4/io/truth_files.h"
 #include "p4/io/video_writer.h"
 #include "p4/sim/camera_layout.h"
+#include "p4/sim/look.h"
 #include "p4/sim/match.h"
 #include "p4/sim/renderer.h"
 
@@ -31,7 +32,10 @@ struct SimulateArgs {
   int points = 4;
   uint64_t seed = 1;
   std::string codec = "h264";
-  std::string ball = "orange";
+  std::string ball;  // the look's own unless given
+  std::string look = "club";
+  double vignetting = 0.0, defocus = 0.0, fov = 0.0, jitter = 0.0;
+  int crf = 18;
   bool markers = false;
   double marker_size = 0.12;
   std::string dictionary = "DICT_4X4_50";
@@ -102,16 +106,23 @@ int Run(const SimulateArgs& a) {
   }
   const int64_t frames = static_cast<int64_t>(std::floor(duration * a.fps));
 
-  const Rig rig = sim::ClubRig(a.cameras, width, height, a.distortion);
+  sim::ClubRigOptions placing;
+  placing.hfov_deg = a.fov;
+  placing.jitter_m = a.jitter;
+  placing.seed = a.seed;
+  const Rig rig = sim::ClubRig(a.cameras, width, height, a.distortion, placing);
   WriteRig(rig, file("rig.yaml"));
   WriteTruthCsv(file("truth.csv"), trajectory, a.fps, frames);
   WriteEventsJsonl(file("truth_events.jsonl"), events);
   WriteJson(file("truth_score.json"), score_json);
 
   sim::SceneOptions scene;
-  scene.orange_ball = a.ball != "white";
-  scene.orange_shirt = a.orange_shirt;
+  scene.look = a.look == "random" ? sim::RandomLook(a.seed, a.ball.empty() ? "any" : a.ball)
+                                  : sim::PresetLook(a.look);
+  if (a.look != "random" && !a.ball.empty()) scene.look.ball = sim::BallColour(a.ball);
+  if (a.orange_shirt) scene.look.shirt_b = sim::BallColour("orange");
   scene.players = !a.no_players;
+  WriteJson(file("look.json"), LookToJson(scene.look));
   if (a.markers) {
     scene.markers = sim::TableCornerMarkers(a.marker_size);
     for (auto& m : scene.markers) m.black = ArucoModules(a.dictionary, m.id, &m.cells);
@@ -122,6 +133,10 @@ int Run(const SimulateArgs& a) {
   render.noise_sigma_chroma = 0.75 * a.noise;
   render.static_supersampling = a.markers ? 4 : 3;
   render.seed = a.seed;
+  render.vignetting = a.vignetting;
+  render.defocus_px = a.defocus;
+  std::string why;
+  if (!render.IsValid(&why)) throw Error("simulate: " + why);
 
   // One thread per camera (up to the core count); each renders and encodes its own video.
   const int cores = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -139,6 +154,7 @@ int Run(const SimulateArgs& a) {
         vo.height = height;
         vo.fps = a.fps;
         vo.codec = codec;
+        vo.crf = a.crf;
         vo.threads = std::max(1, cores / rig.size());
         VideoWriter writer(file(rig.cameras[c].name + VideoExtension(codec)), vo);
         I420Image image(width, height);
@@ -202,8 +218,28 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--codec", args->codec, "h264 (.mp4) or ffv1 (lossless .mkv)")
       ->check(CLI::IsMember({"h264", "ffv1"}))
       ->capture_default_str();
-  cmd->add_option("--ball", args->ball, "Ball colour")
-      ->check(CLI::IsMember({"orange", "white"}))
+  cmd->add_option("--ball", args->ball, "Ball colour (default: the look's; random: any)")
+      ->check(CLI::IsMember({"orange", "white", "yellow", "any"}));
+  cmd->add_option("--look", args->look,
+                  "The hall's look: club, overhead, banner, white, broadcast, dim, or random "
+                  "(drawn from --seed: light, colours, banners, lamps, shirts, a spare ball)")
+      ->check(CLI::IsMember({"club", "overhead", "banner", "white", "broadcast", "dim", "random"}))
+      ->capture_default_str();
+  cmd->add_option("--fov", args->fov, "Field of view across the picture, degrees (0: about 65)")
+      ->check(CLI::Range(0.0, 120.0))
+      ->capture_default_str();
+  cmd->add_option("--jitter", args->jitter,
+                  "Move each camera by up to this many metres (by --seed)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--vignetting", args->vignetting, "Brightness lost at the picture's corners")
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
+  cmd->add_option("--defocus", args->defocus, "Lens blur, Gaussian sigma in pixels")
+      ->check(CLI::Range(0.0, 5.0))
+      ->capture_default_str();
+  cmd->add_option("--crf", args->crf, "H.264 quality (18 good, 32 a cheap webcam's stream)")
+      ->check(CLI::Range(0, 51))
       ->capture_default_str();
   cmd->add_flag("--markers", args->markers,
                 "Lay ArUco markers on the table corners (markers.yaml)");

@@ -21,6 +21,7 @@ struct TrackArgs {
   std::string rig, out, classes, ball = "orange", filter = "p4";
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false, no_smoothing = false;
+  std::string detector = "auto";
   int stride = 1, threads = 1;
   double epipolar_px = 4.0;
   std::vector<std::string> players{"A", "B"};
@@ -35,18 +36,24 @@ struct TrackArgs {
 int Run(const TrackArgs& a) {
   const Rig rig = ReadRig(a.rig);
   const segment::ColorClassSet classes =
-      !a.classes.empty()
-          ? ReadColorClasses(a.classes)
-          : (a.ball == "white" ? segment::DefaultWhiteBall() : segment::DefaultOrangeBall());
+      !a.classes.empty() ? ReadColorClasses(a.classes)
+                         : (a.ball == "white"    ? segment::DefaultWhiteBall()
+                            : a.ball == "yellow" ? segment::DefaultYellowBall()
+                                                 : segment::DefaultOrangeBall());
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
   track::FrameSetOptions options;
   options.use_roi = !a.no_roi;
+  // auto: the background detector for a white ball (colour alone cannot single it out among
+  // lines, lamps and walls), the colour tables for the others (docs/DECISIONS.md, Detection).
+  options.use_background =
+      a.detector == "background" || (a.detector == "auto" && a.ball == "white");
   options.segment.stride = a.stride;
   options.single_camera_fallback = !a.no_single_camera;
   options.epipolar_px = a.epipolar_px;
   options.threads = a.threads;
+  segment::BallColour::Named(a.ball, &options.ball_colour);
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   GameOptions game;
   game.enabled = !a.no_referee;
@@ -108,9 +115,15 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
       ->check(CLI::ExistingFile);
   cmd->add_option("--ball", args->ball, "Ball colour when no --classes")
-      ->check(CLI::IsMember({"orange", "white"}))
+      ->check(CLI::IsMember({"orange", "white", "yellow"}))
       ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");
+  cmd->add_option("--detector", args->detector,
+                  "colour: the colour tables (the paper's); background: what differs from a "
+                  "learnt background with the ball's colour mixed in, measured by coverage; auto: "
+                  "background for a white ball, colour otherwise")
+      ->check(CLI::IsMember({"auto", "colour", "background"}))
+      ->capture_default_str();
   cmd->add_option("--stride", args->stride, "Test every N-th pixel of a row")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();

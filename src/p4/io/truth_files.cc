@@ -104,3 +104,51 @@ void WriteMarkerLayout(const std::string& path, const std::vector<sim::MarkerQua
 }
 
 }  // namespace p4
+
+namespace p4 {
+
+nlohmann::json LookToJson(const sim::Look& look) {
+  const auto rgb = [](const sim::Rgb& c) { return nlohmann::json::array({c.r, c.g, c.b}); };
+  nlohmann::json banners = nlohmann::json::array(), lamps = nlohmann::json::array();
+  for (const sim::Banner& b : look.banners) {
+    banners.push_back({{"wall", b.wall},
+                       {"along", b.along},
+                       {"z", b.z},
+                       {"size", {b.width, b.height}},
+                       {"color", rgb(b.color)},
+                       {"lettering", rgb(b.lettering)}});
+  }
+  for (const sim::Lamp& l : look.lamps) {
+    lamps.push_back({{"where", l.ceiling ? "ceiling" : "wall " + std::to_string(l.wall)},
+                     {"centre", {l.centre.x(), l.centre.y()}},
+                     {"size", {l.size.x(), l.size.y()}},
+                     {"brightness", l.brightness}});
+  }
+  nlohmann::json j = {
+      {"name", look.name},
+      {"light", {look.light.x(), look.light.y(), look.light.z()}},
+      {"ambient", look.ambient},
+      {"ball_ambient", look.ball_ambient},
+      {"ball_specular", look.ball_specular},
+      {"white_balance", rgb(look.white_balance)},
+      {"gain", look.gain},
+      {"drift", look.drift},
+      {"ball", rgb(look.ball)},
+      {"white_ball", look.white_ball()},
+      {"table", rgb(look.table)},
+      {"floor", rgb(look.floor)},
+      {"wall", rgb(look.wall)},
+      {"barrier", rgb(look.barrier)},
+      {"shirts", {rgb(look.shirt_a), rgb(look.shirt_b)}},
+      {"shoes", rgb(look.shoes)},
+      {"arm_swing", look.arm_swing},
+      {"banners", banners},
+      {"lamps", lamps},
+  };
+  if (look.spare_ball) {
+    j["spare_ball"] = {look.spare_ball->x(), look.spare_ball->y(), look.spare_ball->z()};
+  }
+  return j;
+}
+
+}  // namespace p4

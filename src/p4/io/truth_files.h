@@ -26,6 +26,9 @@ void WriteVisibilityCsv(const std::string& path, const Rig& rig,
 // Returns per frame and camera the share seen; empty when the file does not exist.
 std::vector<std::vector<float>> ReadVisibilityCsv(const std::string& path, const Rig& rig);
 
+// look.json: the hall's look of a simulated scene (light, colours, distractors), for reports.
+nlohmann::json LookToJson(const sim::Look& look);
+
 // markers.yaml: the dictionary name and, per marker, its id and 4 world corners (4x3, OpenCV
 // corner order), as `p4track calibrate rig` reads it.
 void WriteMarkerLayout(const std::string& path, const std::vector<sim::MarkerQuad>& markers,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/segment/union_find.h"
+
 namespace p4::segment {
 
 Roi Roi::Around(double cx, double cy, int width, int height, int image_width, int image_height) {
@@ -86,28 +88,6 @@ void ClassifyRow(const Row& row, const ColorLut& lut, uint32_t mask, int x0, int
     out[i] = 1;
     if (previous >= 0) std::fill(out + previous, out + i, uint8_t{1});  // both neighbours in
     previous = i;
-  }
-}
-
-int Find(std::vector<Run>& runs, int i) {
-  int root = i;
-  while (runs[root].parent != root) root = runs[root].parent;
-  while (runs[i].parent != root) {  // path compression
-    const int next = runs[i].parent;
-    runs[i].parent = root;
-    i = next;
-  }
-  return root;
-}
-
-void Unite(std::vector<Run>& runs, int a, int b) {
-  a = Find(runs, a);
-  b = Find(runs, b);
-  if (a == b) return;
-  if (a < b) {
-    runs[b].parent = a;
-  } else {
-    runs[a].parent = b;
   }
 }
 
@@ -204,14 +184,7 @@ int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi
         i = j;
       }
     }
-    // Join runs that touch runs of the row above (8-connected).
-    std::size_t above = previous_row_begin;
-    for (std::size_t r = row_begin; r < runs_.size(); ++r) {
-      while (above < previous_row_end && runs_[above].x1 < runs_[r].x0) ++above;
-      for (std::size_t a = above; a < previous_row_end && runs_[a].x0 <= runs_[r].x1; ++a) {
-        Unite(runs_, static_cast<int>(a), static_cast<int>(r));
-      }
-    }
+    internal::JoinWithRowAbove(runs_, previous_row_begin, previous_row_end, row_begin);
     previous_row_begin = row_begin;
     previous_row_end = runs_.size();
   }
@@ -220,7 +193,7 @@ int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi
   accum_.assign(runs_.size(), Accum{0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
   for (std::size_t i = 0; i < runs_.size(); ++i) {
     const Run& run = runs_[i];
-    Accum& a = accum_[static_cast<std::size_t>(::p4::segment::Find(runs_, static_cast<int>(i)))];
+    Accum& a = accum_[static_cast<std::size_t>(internal::FindRoot(runs_, static_cast<int>(i)))];
     const double len = run.x1 - run.x0;
     const double sx = len * (run.x0 + run.x1 - 1) / 2.0;
     const double sxx = SumSquares(run.x1 - 1.0) - SumSquares(run.x0 - 1.0);

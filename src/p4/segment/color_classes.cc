@@ -61,6 +61,14 @@ ColorClassSet DefaultOrangeBall() {
   return set;
 }
 
+ColorClassSet DefaultYellowBall() {
+  // Yellow (R 0.97, G 0.86, B 0.18) lit from 50 % to 115 % lands at Y 100-225, U 35-90,
+  // V 138-160 (greener or redder yellows and white balance widen it).
+  ColorClassSet set;
+  set.classes.push_back({"ball_bright", {150, 245}, {25, 95}, {132, 175}});
+  set.classes.push_back({"ball_dark", {80, 160}, {50, 105}, {132, 165}});
+  return set;
+}
 ColorClassSet DefaultWhiteBall() {
   ColorClassSet set;
   set.classes.push_back({"ball_white", {185, 255}, {112, 144}, {112, 144}});

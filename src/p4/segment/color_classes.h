@@ -46,6 +46,8 @@ struct ColorClassSet {
 ColorClassSet DefaultOrangeBall();
 // Classes for a white ball (bright, nearly neutral chroma).
 ColorClassSet DefaultWhiteBall();
+// Classes for a yellow ball.
+ColorClassSet DefaultYellowBall();
 
 struct YuvSample {
   uint8_t y, u, v;

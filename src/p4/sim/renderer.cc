@@ -1,6 +1,7 @@
 #include "p4/sim/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -10,12 +11,14 @@
 namespace p4::sim {
 namespace {
 
-struct Rgb {
-  float r, g, b;
-};
-
-// BT.601 limited range.
-inline void ToYuv(const Rgb& c, float* y, float* u, float* v) {
+// BT.601 limited range, as the camera encodes `c` after its white balance and exposure gain: the
+// sensor clips at 1 (lamps, highlights).
+inline void ToYuv(const Rgb& in, const Look& look, float* y, float* u, float* v) {
+  const auto clip = [&](float x, float wb) {
+    return std::clamp(x * wb * static_cast<float>(look.gain), 0.0f, 1.0f);
+  };
+  const Rgb c{clip(in.r, look.white_balance.r), clip(in.g, look.white_balance.g),
+              clip(in.b, look.white_balance.b)};
   const float luma = 0.299f * c.r + 0.587f * c.g + 0.114f * c.b;
   *y = 16.0f + 219.0f * luma;
   *u = 128.0f + 224.0f * (c.b - luma) / 1.772f;
@@ -24,10 +27,10 @@ inline void ToYuv(const Rgb& c, float* y, float* u, float* v) {
 
 inline uint8_t Clamp8(float x) { return static_cast<uint8_t>(std::clamp(x + 0.5f, 0.0f, 255.0f)); }
 
-const Eigen::Vector3d kLight = Eigen::Vector3d(0.3, -0.4, 1.0).normalized();
-
-inline Rgb Shade(const Rgb& albedo, const Eigen::Vector3d& normal, double ambient = 0.55) {
-  const float k = static_cast<float>(ambient + (1.0 - ambient) * std::max(0.0, normal.dot(kLight)));
+// Lambert shading: `ambient` of the light from all round, the rest from `light` (unit).
+inline Rgb Shade(const Rgb& albedo, const Eigen::Vector3d& normal, const Eigen::Vector3d& light,
+                 double ambient) {
+  const float k = static_cast<float>(ambient + (1.0 - ambient) * std::max(0.0, normal.dot(light)));
   return {albedo.r * k, albedo.g * k, albedo.b * k};
 }
 
@@ -70,14 +73,12 @@ bool HitBox(const Box& box, const Eigen::Vector3d& o, const Eigen::Vector3d& d, 
   return true;
 }
 
-std::vector<Box> StaticBoxes() {
+std::vector<Box> StaticBoxes(const Look& look) {
   using table::kHalfLength;
   using table::kHalfWidth;
   std::vector<Box> boxes;
-  boxes.push_back({{-kHalfLength, -kHalfWidth, -0.025},
-                   {kHalfLength, kHalfWidth, 0.0},
-                   {0.05f, 0.17f, 0.36f},
-                   1});
+  boxes.push_back(
+      {{-kHalfLength, -kHalfWidth, -0.025}, {kHalfLength, kHalfWidth, 0.0}, look.table, 1});
   for (double sx : {-1.0, 1.0}) {
     for (double sy : {-1.0, 1.0}) {
       const Eigen::Vector3d c(sx * 1.05, sy * 0.6, 0.0);
@@ -103,14 +104,72 @@ std::vector<Box> StaticBoxes() {
 
 constexpr double kRoomX = 7.0, kRoomY = 5.0, kCeiling = 3.2;
 
-Rgb RoomColor(const Eigen::Vector3d& p, int face) {
-  if (face == 0) {  // floor: red-brown sports floor with faint boards
-    const float stripe = (static_cast<int>(std::floor(p.y() / 0.5)) % 2 == 0) ? 1.0f : 0.94f;
-    return {0.40f * stripe, 0.17f * stripe, 0.13f * stripe};
+// Block letters 12 cm wide with 4 cm strokes along a band: `a` along the band, `h` in [0, 1]
+// across it. Some letters are left out, as between words.
+bool Lettering(double a, double h) {
+  const double cell = std::floor(a / 0.12);
+  const double x = a - 0.12 * cell;
+  if (h < 0.0 || h > 1.0 || x > 0.09) return false;
+  const auto word = static_cast<uint32_t>(static_cast<int64_t>(cell) * 2654435761u) >> 28;
+  if (word % 5 == 0) return false;
+  const bool stem = x < 0.035 || (word % 2 == 0 && x > 0.055);
+  const bool bar = h < 0.25 || h > 0.75 || (word % 3 == 0 && std::abs(h - 0.5) < 0.12);
+  return stem || bar;
+}
+
+// A wall point as (wall index as Banner::wall, along, height above the table top).
+void WallCoordinates(const Eigen::Vector3d& p, int* wall, double* along) {
+  if (std::abs(std::abs(p.x()) - kRoomX) < 1e-6) {
+    *wall = p.x() < 0 ? 0 : 1;
+    *along = p.y();
+  } else {
+    *wall = p.y() < 0 ? 2 : 3;
+    *along = p.x();
   }
-  if (face == 1) return {0.85f, 0.85f, 0.86f};                     // ceiling
-  if (p.z() < table::kFloorZ + 0.75) return {0.08f, 0.1f, 0.28f};  // barrier band
-  return {0.72f, 0.70f, 0.64f};
+}
+
+// The room's surfaces: floor (face 0), ceiling (1) and walls (2) with their banners, lettering,
+// lamps and windows; *emits is set for light sources (not shaded).
+Rgb RoomColor(const Look& look, const Eigen::Vector3d& p, int face, bool* emits) {
+  *emits = false;
+  if (face == 0) {  // floor with faint boards
+    const float stripe = (static_cast<int>(std::floor(p.y() / 0.5)) % 2 == 0) ? 1.0f : 0.94f;
+    return {look.floor.r * stripe, look.floor.g * stripe, look.floor.b * stripe};
+  }
+  if (face == 1) {
+    for (const Lamp& l : look.lamps) {
+      if (l.ceiling && std::abs(p.x() - l.centre.x()) < l.size.x() / 2 &&
+          std::abs(p.y() - l.centre.y()) < l.size.y() / 2) {
+        *emits = true;
+        return {l.brightness, l.brightness, l.brightness};
+      }
+    }
+    return look.ceiling;
+  }
+  int wall = 0;
+  double along = 0.0;
+  WallCoordinates(p, &wall, &along);
+  for (const Lamp& l : look.lamps) {
+    if (!l.ceiling && l.wall == wall && std::abs(along - l.centre.x()) < l.size.x() / 2 &&
+        std::abs(p.z() - l.centre.y()) < l.size.y() / 2) {
+      *emits = true;
+      return {l.brightness, l.brightness, l.brightness * 0.97f};
+    }
+  }
+  for (const Banner& b : look.banners) {
+    if (b.wall != wall || std::abs(along - b.along) > b.width / 2 ||
+        std::abs(p.z() - b.z) > b.height / 2) {
+      continue;
+    }
+    const double h = (p.z() - (b.z - b.height * 0.3)) / (b.height * 0.6);
+    return Lettering(along - b.along + b.width / 2, h) ? b.lettering : b.color;
+  }
+  const double barrier_top = table::kFloorZ + 0.75;
+  if (p.z() < barrier_top) {
+    const double h = (p.z() - (table::kFloorZ + 0.2)) / 0.35;
+    return Lettering(along + 10.0, h) ? look.barrier_lettering : look.barrier;
+  }
+  return look.wall;
 }
 
 struct Ellipsoid {
@@ -118,21 +177,26 @@ struct Ellipsoid {
   Rgb color;
 };
 
-std::vector<Ellipsoid> PlayerBody(const Eigen::Vector2d& feet, bool player_b, bool orange_shirt) {
+// A player: legs, shorts, shirt, head, a swinging arm and shoes, in the look's colours.
+std::vector<Ellipsoid> PlayerBody(const Eigen::Vector2d& feet, bool player_b, const Look& look,
+                                  double t) {
   const double f = table::kFloorZ;
   const double toward = player_b ? -1.0 : 1.0;  // faces the table
-  const Rgb shirt = player_b ? (orange_shirt ? Rgb{0.95f, 0.45f, 0.12f} : Rgb{0.13f, 0.13f, 0.14f})
-                             : Rgb{0.12f, 0.16f, 0.42f};
-  const Rgb skin{0.82f, 0.6f, 0.5f};
-  const Rgb shorts{0.08f, 0.08f, 0.1f};
+  const Rgb& shirt = player_b ? look.shirt_b : look.shirt_a;
   const double x = feet.x(), y = feet.y();
+  // The arm swings about 1.5 times a second (a few metres a second at the hand).
+  const double swing = look.arm_swing * std::sin(2.0 * M_PI * 1.5 * t + (player_b ? 2.0 : 0.0));
   return {
-      {{x, y - 0.11, f + 0.45}, {0.08, 0.08, 0.45}, skin},
-      {{x, y + 0.11, f + 0.45}, {0.08, 0.08, 0.45}, skin},
-      {{x, y, f + 0.85}, {0.14, 0.2, 0.14}, shorts},
+      {{x, y - 0.11, f + 0.45}, {0.08, 0.08, 0.45}, look.skin},
+      {{x, y + 0.11, f + 0.45}, {0.08, 0.08, 0.45}, look.skin},
+      {{x, y, f + 0.85}, {0.14, 0.2, 0.14}, look.shorts},
       {{x, y, f + 1.2}, {0.13, 0.22, 0.3}, shirt},
-      {{x, y, f + 1.63}, {0.1, 0.09, 0.12}, skin},
-      {{x + toward * 0.22, y + 0.3, f + 1.1}, {0.26, 0.05, 0.05}, skin},
+      {{x, y, f + 1.63}, {0.1, 0.09, 0.12}, look.skin},
+      {{x + toward * 0.22, y + 0.3 + swing, f + 1.1 + 0.4 * std::abs(swing)},
+       {0.26, 0.05, 0.05},
+       look.skin},
+      {{x + toward * 0.05, y - 0.11, f + 0.04}, {0.14, 0.05, 0.04}, look.shoes},
+      {{x + toward * 0.05, y + 0.11, f + 0.04}, {0.14, 0.05, 0.04}, look.shoes},
   };
 }
 
@@ -157,6 +221,10 @@ bool RenderOptions::IsValid(std::string* error) const {
     if (error) *error = "noise must be >= 0";
     return false;
   }
+  if (!(vignetting >= 0.0 && vignetting < 1.0) || !(defocus_px >= 0.0 && defocus_px <= 5.0)) {
+    if (error) *error = "vignetting must be in [0, 1) and defocus in [0, 5] px";
+    return false;
+  }
   if (static_supersampling < 1 || static_supersampling > 8 || ball_min_samples < 1) {
     if (error) *error = "supersampling must be in [1, 8] and ball samples >= 1";
     return false;
@@ -176,6 +244,16 @@ CameraRenderer::CameraRenderer(const Camera& camera, const SceneOptions& scene,
         undistorted_[(static_cast<std::size_t>(v) * w_ + u) * 2 + 1] = static_cast<float>(n.y());
       }
     }
+  }
+  if (options_.defocus_px > 0.0) {
+    const int m = static_cast<int>(std::ceil(3.0 * options_.defocus_px));
+    float sum = 0.0f;
+    for (int k = -m; k <= m; ++k) {
+      kernel_.push_back(
+          static_cast<float>(std::exp(-0.5 * k * k / (options_.defocus_px * options_.defocus_px))));
+      sum += kernel_.back();
+    }
+    for (float& k : kernel_) k /= sum;
   }
   RenderStatic();
   // Noise tables: twice a frame's size, read at a random offset each frame.
@@ -213,7 +291,8 @@ void CameraRenderer::RenderStatic() {
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
   static_yuv_.assign(3 * n, 0.0f);
   static_depth_.assign(n, 1e9f);
-  const std::vector<Box> boxes = StaticBoxes();
+  const Look& look = scene_.look;
+  const std::vector<Box> boxes = StaticBoxes(look);
   const Eigen::Matrix3d world_from_cam = camera_.cam_from_world.rotation.transpose();
   const Eigen::Vector3d origin = camera_.Center();
   const int ss = options_.static_supersampling;
@@ -241,7 +320,11 @@ void CameraRenderer::RenderStatic() {
     }
     Eigen::Vector3d normal =
         face == 0 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-d.normalized());
-    if (face >= 0) color = Shade(RoomColor(origin + best * d, face), normal, 0.7);
+    if (face >= 0) {
+      bool emits = false;
+      const Rgb room = RoomColor(look, origin + best * d, face, &emits);
+      color = emits ? room : Shade(room, normal, look.light, std::min(1.0, look.ambient + 0.15));
+    }
     for (const Box& box : boxes) {
       double t;
       Eigen::Vector3d nb;
@@ -253,7 +336,7 @@ void CameraRenderer::RenderStatic() {
           const bool edge = std::abs(p.x()) > table::kHalfLength - table::kEdgeLineWidth ||
                             std::abs(p.y()) > table::kHalfWidth - table::kEdgeLineWidth;
           const bool centre = std::abs(p.y()) < table::kCentreLineWidth / 2.0;
-          if (edge || centre) albedo = {0.93f, 0.93f, 0.93f};
+          if (edge || centre) albedo = look.lines;
           for (const MarkerQuad& m : scene_.markers) {
             const Eigen::Vector3d ex = m.corners[1] - m.corners[0];
             const Eigen::Vector3d ey = m.corners[3] - m.corners[0];
@@ -269,7 +352,21 @@ void CameraRenderer::RenderStatic() {
             }
           }
         }
-        color = Shade(albedo, nb);
+        color = Shade(albedo, nb, look.light, look.ambient);
+      }
+    }
+    // A spare ball lying still.
+    if (look.spare_ball) {
+      const Eigen::Vector3d oc = origin - *look.spare_ball;
+      const double a = d.squaredNorm(), b = oc.dot(d);
+      const double disc = b * b - a * (oc.squaredNorm() - table::kBallRadius * table::kBallRadius);
+      if (disc >= 0.0) {
+        const double t = (-b - std::sqrt(disc)) / a;
+        if (t > 0 && t < best) {
+          best = t;
+          const Eigen::Vector3d normal = (origin + t * d - *look.spare_ball) / table::kBallRadius;
+          color = Shade(look.ball, normal, look.light, look.ball_ambient);
+        }
       }
     }
     // The net's mesh: a see-through dark layer in the plane x = 0.
@@ -304,7 +401,7 @@ void CameraRenderer::RenderStatic() {
       const float k = 1.0f / (ss * ss);
       const Rgb mean{sum.r * k, sum.g * k, sum.b * k};
       const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
-      ToYuv(mean, &static_yuv_[i], &static_yuv_[n + i], &static_yuv_[2 * n + i]);
+      ToYuv(mean, look, &static_yuv_[i], &static_yuv_[n + i], &static_yuv_[2 * n + i]);
       double depth;
       const Eigen::Vector2d centre = Normalized(u, v);
       trace(world_from_cam * Eigen::Vector3d(centre.x(), centre.y(), 1.0), &depth);
@@ -337,20 +434,65 @@ void CameraRenderer::RestoreWork(const Rect& r) {
 }
 
 void CameraRenderer::WriteRect(const Rect& r, I420Image* out) const {
+  // The lens: the work planes blurred by the defocus kernel (separable), then vignetted.
+  const int rw = r.x1 - r.x0, rh = r.y1 - r.y0;
+  const int m = static_cast<int>(kernel_.size()) / 2;
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
+  std::vector<float> planes(3 * static_cast<std::size_t>(rw) * rh);
+  std::vector<float> rows;
+  for (int p = 0; p < 3; ++p) {
+    const float* src = &work_yuv_[p * n];
+    float* dst = &planes[p * static_cast<std::size_t>(rw) * rh];
+    if (m == 0) {
+      for (int v = 0; v < rh; ++v) {
+        std::memcpy(dst + static_cast<std::size_t>(v) * rw,
+                    src + static_cast<std::size_t>(r.y0 + v) * w_ + r.x0, rw * sizeof(float));
+      }
+      continue;
+    }
+    const int ya = std::max(0, r.y0 - m), yb = std::min(h_, r.y1 + m);
+    rows.assign(static_cast<std::size_t>(yb - ya) * rw, 0.0f);
+    for (int v = ya; v < yb; ++v) {
+      const float* row = src + static_cast<std::size_t>(v) * w_;
+      for (int u = r.x0; u < r.x1; ++u) {
+        float sum = 0.0f;
+        for (int k = -m; k <= m; ++k) sum += kernel_[k + m] * row[std::clamp(u + k, 0, w_ - 1)];
+        rows[static_cast<std::size_t>(v - ya) * rw + (u - r.x0)] = sum;
+      }
+    }
+    for (int v = r.y0; v < r.y1; ++v) {
+      for (int u = 0; u < rw; ++u) {
+        float sum = 0.0f;
+        for (int k = -m; k <= m; ++k) {
+          sum += kernel_[k + m] *
+                 rows[static_cast<std::size_t>(std::clamp(v + k, ya, yb - 1) - ya) * rw + u];
+        }
+        dst[static_cast<std::size_t>(v - r.y0) * rw + u] = sum;
+      }
+    }
+  }
+  // Vignetting: brightness falls with the squared distance from the centre, by `vignetting` at
+  // the corners (applied to the levels above black and around grey).
+  const double cx = (w_ - 1) / 2.0, cy = (h_ - 1) / 2.0, corner = cx * cx + cy * cy;
+  const auto gain = [&](double u, double v) {
+    return static_cast<float>(1.0 - options_.vignetting *
+                                        ((u - cx) * (u - cx) + (v - cy) * (v - cy)) / corner);
+  };
   for (int v = r.y0; v < r.y1; ++v) {
-    for (int u = r.x0; u < r.x1; ++u)
-      out->y()[v * w_ + u] = Clamp8(work_yuv_[static_cast<std::size_t>(v) * w_ + u]);
+    for (int u = r.x0; u < r.x1; ++u) {
+      const float y = planes[static_cast<std::size_t>(v - r.y0) * rw + (u - r.x0)];
+      out->y()[v * w_ + u] = Clamp8(16.0f + gain(u, v) * (y - 16.0f));
+    }
   }
   const int cw = w_ / 2;
   for (int v = r.y0 / 2; v < r.y1 / 2; ++v) {
     for (int u = r.x0 / 2; u < r.x1 / 2; ++u) {
+      const float g = gain(2 * u + 0.5, 2 * v + 0.5);
       for (int p = 1; p <= 2; ++p) {
-        const float* plane = &work_yuv_[p * n];
-        const std::size_t i =
-            static_cast<std::size_t>(2 * v) * w_ + static_cast<std::size_t>(2 * u);
-        const float mean = 0.25f * (plane[i] + plane[i + 1] + plane[i + w_] + plane[i + w_ + 1]);
-        (p == 1 ? out->u() : out->v())[v * cw + u] = Clamp8(mean);
+        const float* plane = &planes[p * static_cast<std::size_t>(rw) * rh];
+        const std::size_t i = static_cast<std::size_t>(2 * v - r.y0) * rw + (2 * u - r.x0);
+        const float mean = 0.25f * (plane[i] + plane[i + 1] + plane[i + rw] + plane[i + rw + 1]);
+        (p == 1 ? out->u() : out->v())[v * cw + u] = Clamp8(128.0f + g * (mean - 128.0f));
       }
     }
   }
@@ -365,7 +507,7 @@ CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) 
   for (int k = 0; k < 2; ++k) {
     // Each ellipsoid is z-buffered on its own projected box: far fewer ray tests than one box
     // around the whole body.
-    for (const Ellipsoid& e : PlayerBody(content.players[k], k == 1, scene_.orange_shirt)) {
+    for (const Ellipsoid& e : PlayerBody(content.players[k], k == 1, scene_.look, content.t)) {
       double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
       bool behind = false;
       for (int c = 0; c < 8 && !behind; ++c) {
@@ -393,8 +535,8 @@ CameraRenderer::Rect CameraRenderer::RenderPlayers(const FrameContent& content) 
           const Eigen::Vector3d p = origin + t * d;
           const Eigen::Vector3d normal =
               (p - e.c).cwiseQuotient(e.r.cwiseProduct(e.r)).normalized();
-          ToYuv(Shade(e.color, normal, 0.5), &work_yuv_[i], &work_yuv_[n + i],
-                &work_yuv_[2 * n + i]);
+          ToYuv(Shade(e.color, normal, scene_.look.light, 0.5), scene_.look, &work_yuv_[i],
+                &work_yuv_[n + i], &work_yuv_[2 * n + i]);
           work_depth_[i] = static_cast<float>(t);
         }
       }
@@ -425,8 +567,9 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, dou
   if (x1 < 0 || y1 < 0 || x0 >= w_ || y0 >= h_) return {};
   const Rect r = ClipEven(x0, y0, x1, y1);
   if (r.empty()) return {};
-  const Rgb albedo = scene_.orange_ball ? Rgb{1.0f, 0.42f, 0.05f} : Rgb{0.95f, 0.95f, 0.92f};
-  const Eigen::Vector3d light = camera_.cam_from_world.rotation * kLight;
+  const Look& look = scene_.look;
+  const Rgb albedo = look.ball;
+  const Eigen::Vector3d light = camera_.cam_from_world.rotation * look.light;
   const int samples_t = static_cast<int>(centres.size());
   const int samples = std::max(options_.ball_min_samples, samples_t);
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
@@ -457,12 +600,12 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, dou
         const Eigen::Vector3d view = -(t * d).normalized();
         const Eigen::Vector3d reflect = 2.0 * normal.dot(light) * normal - light;
         // Halls light a matte ball from many lamps: mostly ambient, a little sun, a soft highlight.
-        Rgb col = Shade(albedo, normal, 0.8);
-        const float spec =
-            0.08f * static_cast<float>(std::pow(std::max(0.0, reflect.dot(view)), 30.0));
+        Rgb col = Shade(albedo, normal, light, look.ball_ambient);
+        const float spec = static_cast<float>(
+            look.ball_specular * std::pow(std::max(0.0, reflect.dot(view)), look.shininess));
         col = {col.r + spec, col.g + spec, col.b + spec};
         float yy, uu, vv;
-        ToYuv(col, &yy, &uu, &vv);
+        ToYuv(col, look, &yy, &uu, &vv);
         sy += yy, su += uu, sv += vv;
         ++hits;
       }
@@ -507,7 +650,24 @@ double CameraRenderer::Render(const FrameContent& content, uint64_t frame_index,
   double visible = 0.0;
   RenderBall(content, &visible);
   std::memcpy(out->bytes().data(), static_i420_.bytes().data(), out->bytes().size());
-  for (const Rect& r : dirty_) WriteRect(r, out);
+  // The defocus spreads what was drawn by the kernel's radius.
+  const int m = static_cast<int>(kernel_.size()) / 2;
+  for (const Rect& r : dirty_)
+    WriteRect(ClipEven(r.x0 - m, r.y0 - m, r.x1 + m - 1, r.y1 + m - 1), out);
+  const Look& look = scene_.look;
+  if (look.drift > 0.0) {
+    // Auto-exposure drifting slowly: every level scaled about black (luma) and grey (chroma).
+    const double g = 1.0 + look.drift * std::sin(2.0 * M_PI * content.t / look.drift_period_s);
+    std::array<uint8_t, 256> luma{}, chroma{};
+    for (int x = 0; x < 256; ++x) {
+      luma[x] = Clamp8(static_cast<float>(16.0 + g * (x - 16.0)));
+      chroma[x] = Clamp8(static_cast<float>(128.0 + g * (x - 128.0)));
+    }
+    uint8_t* bytes = out->bytes().data();
+    const std::size_t luma_size = static_cast<std::size_t>(w_) * h_;
+    for (std::size_t i = 0; i < luma_size; ++i) bytes[i] = luma[bytes[i]];
+    for (std::size_t i = luma_size; i < out->bytes().size(); ++i) bytes[i] = chroma[bytes[i]];
+  }
   AddNoise(frame_index, out);
   return visible;
 }

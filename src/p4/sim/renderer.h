@@ -1,7 +1,8 @@
 // Renders one camera's view of the simulated scene into I420 frames (BT.601, limited range),
 // the way a real camera would deliver them: a supersampled static background (rendered once),
 // players, the ball shaded and anti-aliased with motion blur from sub-frame samples over the
-// exposure, sensor noise, and the camera's own lens distortion.
+// exposure, sensor noise, and the camera's own lens: distortion, defocus and vignetting. Colours
+// and light come from the scene's Look (auto-exposure drift included).
 //
 // Frame time convention: a frame stamped t is exposed over [t - exposure/2, t + exposure/2], so
 // the blurred ball's centroid sits at the projection of the ball at t.
@@ -24,6 +25,8 @@ struct RenderOptions {
   double noise_sigma_chroma = 1.5;
   int static_supersampling = 3;  // per axis, for the background (3 => 9 rays a pixel)
   int ball_min_samples = 16;     // rays per pixel for the ball (AA and blur share them)
+  double vignetting = 0.0;       // brightness lost at the picture's corners, share
+  double defocus_px = 0.0;       // lens blur: Gaussian sigma in pixels (0: sharp)
   uint64_t seed = 1;
 
   bool IsValid(std::string* error) const;
@@ -64,6 +67,7 @@ class CameraRenderer {
   std::vector<float> work_yuv_, work_depth_;
   I420Image static_i420_;
   std::vector<int8_t> noise_luma_, noise_chroma_;
+  std::vector<float> kernel_;  // defocus kernel (empty when sharp)
   std::vector<Rect> dirty_;
 };
 

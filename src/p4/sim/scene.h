@@ -1,13 +1,16 @@
-// What the simulated cameras see: a sports hall (red-brown floor, walls with a dark barrier
-// band), a blue table with white lines on legs, the net with its white top band and posts, two
-// player-like bodies, the ball, and optionally ArUco markers lying on the table's corners
-// (paper §2). World frame of DESIGN.md, metres.
+// What the simulated cameras see: a sports hall (floor, walls with a barrier band, banners,
+// lamps), a table with white lines on legs, the net with its white top band and posts, two
+// player-like bodies, the ball (and maybe a spare one lying still), and optionally ArUco markers
+// lying on the table's corners (paper §2); its colours and light come from a Look (look.h).
+// World frame of DESIGN.md, metres.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <vector>
+
+#include "p4/sim/look.h"
 
 namespace p4::sim {
 
@@ -22,14 +25,14 @@ struct MarkerQuad {
 };
 
 struct SceneOptions {
-  bool orange_ball = true;  // else white
+  Look look;
   bool players = true;
-  bool orange_shirt = false;  // player B wears an orange-ish shirt (a hard distractor)
   std::vector<MarkerQuad> markers;
 };
 
 // The dynamic content of one frame.
 struct FrameContent {
+  double t = 0.0;  // the frame's time, seconds (auto-exposure drift, arms)
   // Ball centres at evenly spaced instants over the exposure (empty: no ball in the scene).
   std::vector<Eigen::Vector3d> ball;
   // Feet positions (x, y) of player A and B.

@@ -21,6 +21,9 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "ROI sizes: need 8 <= min <= max";
     return false;
   }
+  if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error)) {
+    return false;
+  }
   if (threads < 1 || threads > 64) {
     if (error) *error = "threads must be 1-64";
     return false;
@@ -34,6 +37,9 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       lut_(classes.BuildLut()),
       options_(options),
       finders_(rig.cameras.size()),
+      backgrounds_(rig.cameras.size()),
+      foreground_finders_(rig.cameras.size()),
+      coverage_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       tracker_(options.tracker) {
@@ -68,17 +74,60 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       search.roi = segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
     }
   }
+  segment::BackgroundModel& background = backgrounds_[c];
+  if (options_.use_background &&
+      (background.width() != (image.width & ~1) || background.height() != (image.height & ~1))) {
+    background = segment::BackgroundModel(image.width, image.height, options_.background);
+  }
+  const bool on_background = options_.use_background && background.ready();
+  segment::ForegroundFinder& foreground = foreground_finders_[c];
+  std::vector<segment::CoverageRegion>& coverage = coverage_[c];
+  coverage.clear();
+  // The colour tables first (paper §3.4): in the predicted window, else the whole image. On a
+  // known background a colour region must also differ from it (lamps, banners, lines, a ball
+  // lying on the floor do not) and is measured by its coverage. Only when the colours find
+  // nothing, what differs from the background with the ball's colour mixed in (a blurred streak,
+  // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
+  const auto colour_search = [&](const segment::Roi& roi) {
+    const int n = finders_[c].Find(image, lut_, roi, options_.segment, &regions);
+    if (!on_background) return n;
+    coverage.clear();
+    for (int k = 0; k < n; ++k) {
+      const segment::Region& r = regions[k];
+      segment::CoverageRegion measured;
+      const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
+      if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
+                             &measured) &&
+          std::hypot(measured.region.cx - r.cx, measured.region.cy - r.cy) <
+              0.5 * r.diameter + 2.0) {
+        coverage.push_back(measured);
+      }
+    }
+    return static_cast<int>(coverage.size());
+  };
+  const auto background_search = [&](const segment::Roi& roi) {
+    segment::ForegroundOptions sized = options_.foreground;
+    sized.lut = &lut_;
+    sized.lut_mask = options_.segment.mask;
+    sized.max_diameter_px = std::min(sized.max_diameter_px, 2.0 * table::kBallRadius * camera.fx);
+    return foreground.Find(image, background, options_.ball_colour, roi, sized, &coverage);
+  };
   int found = 0;
   if (!search.roi.empty()) {
-    found = finders_[c].Find(image, lut_, search.roi, options_.segment, &regions);
+    found = colour_search(search.roi);
+    if (found == 0 && on_background) found = background_search(search.roi);
   }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
-    found = finders_[c].Find(image, lut_, {}, options_.segment, &regions);
+    found = colour_search({});
+    if (found == 0 && on_background) found = background_search({});
   }
+  const bool from_colour = !on_background;
   int kept = 0;
   for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
-    const segment::Region& r = regions[k];
+    const segment::Region& r = from_colour ? regions[k] : coverage[k].region;
+    std::optional<double> coverage_diameter;
+    if (!from_colour) coverage_diameter = r.diameter;
     // A ball, even blurred, is a compact blob: not a wall, not a line.
     if (r.area > options_.max_area_px ||
         r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
@@ -87,7 +136,9 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     ++kept;
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
-    if (options_.refine) {
+    if (coverage_diameter) {
+      d.diameter_px = *coverage_diameter;  // the coverage sum: the disc's area, blur or not
+    } else if (options_.refine) {
       // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
       // differently in each camera, which the epipolar check does not forgive.
       if (const auto m = segment::MeasureBall(image, r)) {
@@ -100,6 +151,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     out->push_back(d);
   }
+  if (options_.use_background) background.Update(image, search.roi);
 }
 
 FrameSetResult FrameSetTracker::Process(TimeNs t,
@@ -175,14 +227,14 @@ std::optional<Measurement> FrameSetTracker::Associate(
     std::vector<std::pair<int, int>> members;  // (camera, candidate)
     PointEstimate estimate;
     double prediction_distance = 0.0;
-    int area = 0;
+    double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
   };
   std::optional<Hypothesis> best;
   const auto better = [&](const Hypothesis& a, const Hypothesis& b) {
     if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
     if (predicted) return a.prediction_distance < b.prediction_distance;
-    if (a.area != b.area) return a.area > b.area;
-    return a.estimate.mean_reprojection_px < b.estimate.mean_reprojection_px;
+    return a.size_misfit + 0.05 * a.estimate.mean_reprojection_px <
+           b.size_misfit + 0.05 * b.estimate.mean_reprojection_px;
   };
   std::vector<Observation> observations;
   for (int i = 0; i < n; ++i) {
@@ -221,8 +273,28 @@ std::optional<Measurement> FrameSetTracker::Associate(
             if (!estimate) continue;
           }
           if (estimate->mean_reprojection_px > options_.reprojection_px) continue;
+          // In the hall, above its floor (the floor is 0.76 m below the table top).
+          const Eigen::Vector3d& q = estimate->point;
+          if (q.z() < table::kFloorZ - 0.02 || q.z() > options_.hall_half_size.z() ||
+              std::abs(q.x()) > options_.hall_half_size.x() ||
+              std::abs(q.y()) > options_.hall_half_size.y()) {
+            continue;
+          }
           h.estimate = *estimate;
-          for (const auto& [c, m] : h.members) h.area += candidates[c][m].area_px;
+          // The ball's known size (paper §3.2) at the point found: a head, a shirt or a speck of
+          // noise that happens to meet an epipolar line is the wrong size in some view.
+          bool sized = true;
+          for (const auto& [c, m] : h.members) {
+            const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
+            const double ratio = candidates[c][m].diameter_px / std::max(1e-6, expected);
+            if (expected <= 0.0 || ratio > options_.max_size_ratio ||
+                ratio < 1.0 / options_.max_size_ratio - 0.25) {
+              sized = false;
+              break;
+            }
+            h.size_misfit += std::abs(std::log(ratio));
+          }
+          if (!sized) continue;
           // Distance to the prediction ranks hypotheses of as many views; it never rejects one
           // (a wrong track must not hide the ball: the filter's gate and restarts judge).
           if (predicted) h.prediction_distance = (estimate->point - *predicted).norm();

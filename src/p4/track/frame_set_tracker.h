@@ -18,8 +18,11 @@
 #include "p4/core/image.h"
 #include "p4/core/time.h"
 #include "p4/geometry/rig.h"
+#include "p4/segment/background_model.h"
+#include "p4/segment/ball_colour.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
+#include "p4/segment/foreground_finder.h"
 #include "p4/track/ball_tracker.h"
 #include "p4/track/camera_pool.h"
 
@@ -36,14 +39,28 @@ struct FrameSetOptions {
   int static_frames = 30;
   double epipolar_px = 4.0;      // max distance of a candidate from another view's epipolar line
   double reprojection_px = 5.0;  // max reprojection error of an agreeing view
+  // Each agreeing view's ball diameter within this factor of the one expected at the point
+  // found (down to 1 / factor - 0.25: a ball half hidden looks smaller).
+  double max_size_ratio = 1.6;
+  // Where a ball can be: |x|, |y| and the height above the table top (m); the floor below.
+  Eigen::Vector3d hall_half_size{8.0, 6.0, 5.0};
   bool use_roi = true;
   int roi_min_px = 40;   // the paper's fixed 40 px window...
   int roi_max_px = 240;  // ...grown with the predicted ball size and speed
   bool single_camera_fallback = true;
-  double pixel_sigma = 0.5;              // centroid noise, px (for measurement covariances)
-  double diameter_sigma = 0.35;          // diameter noise, px (refined)
-  double diameter_bias_px = 0.65;        // the binary region is this much narrower than the ball
-  bool refine = true;                    // the diameter from luma coverage (MeasureBall)
+  double pixel_sigma = 0.5;        // centroid noise, px (for measurement covariances)
+  double diameter_sigma = 0.35;    // diameter noise, px (refined)
+  double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
+  bool refine = true;              // the diameter from luma coverage (MeasureBall)
+  // Beyond the paper: a background model per camera; once it is ready the ball is what differs
+  // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
+  // by its coverage of the pixels (centre at mid-exposure, area whatever the blur). The colour
+  // look-up tables stay the first, fast search inside the predicted window. Off: the colour
+  // tables alone (the paper's detector with today's refinements).
+  bool use_background = false;
+  segment::BackgroundOptions background;
+  segment::ForegroundOptions foreground;
+  segment::BallColour ball_colour;
   double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
@@ -130,6 +147,9 @@ class FrameSetTracker {
   void AgeStaticSpots(int camera);
 
   std::vector<segment::BlobFinder> finders_;
+  std::vector<segment::BackgroundModel> backgrounds_;
+  std::vector<segment::ForegroundFinder> foreground_finders_;
+  std::vector<std::vector<segment::CoverageRegion>> coverage_;  // per camera
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;

@@ -147,8 +147,8 @@ TEST_F(FrameSetTrackerTest, RoiOutsideTheImageFallsBackToTheWholeImage) {
 }
 
 TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
-  // An orange mark that both cameras see at one place (so it passes the epipolar check) is taken
-  // for the ball at first, and dropped once it has not moved for static_frames sets.
+  // A ball-sized orange mark that both cameras see at one place (so it passes the epipolar check)
+  // is taken for the ball at first, and dropped once it has not moved for static_frames sets.
   FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
   const Eigen::Vector3d mark(0.9, 0.5, 0.0);
   int measured_early = 0, measured_late = 0;
@@ -157,7 +157,7 @@ TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
     for (int c = 0; c < 2; ++c) {
       const auto px = rig_.cameras[c].Project(mark);
       ASSERT_TRUE(px.has_value());
-      PaintOrange(c, px->x(), px->y(), 4.0);
+      PaintOrange(c, px->x(), px->y(), 2.5);  // the size of the ball there
     }
     const auto result = tracker.Process(FromSeconds(k / 120.0), views);
     if (k < 10) measured_early += result.measurement.has_value();

@@ -1,0 +1,183 @@
+#include "p4/segment/background_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace p4::segment {
+namespace {
+
+// A block's chroma pair in any of the formats (YUYV: its top row's).
+inline void ChromaOf(const ImageView& image, int bx, int by, float* u, float* v) {
+  switch (image.format) {
+    case PixelFormat::kI420:
+      *u = image.planes[1].Row(by)[bx];
+      *v = image.planes[2].Row(by)[bx];
+      return;
+    case PixelFormat::kNV12: {
+      const uint8_t* uv = image.planes[1].Row(by);
+      *u = uv[2 * bx];
+      *v = uv[2 * bx + 1];
+      return;
+    }
+    case PixelFormat::kYUYV: {
+      const uint8_t* p = image.planes[0].Row(2 * by) + 4 * bx;
+      *u = p[1];
+      *v = p[3];
+      return;
+    }
+  }
+}
+
+inline float LumaOf(const ImageView& image, int x, int y) {
+  if (image.format == PixelFormat::kYUYV) return image.planes[0].Row(y)[2 * x];
+  return image.planes[0].Row(y)[x];
+}
+
+}  // namespace
+
+bool BackgroundOptions::IsValid(std::string* error) const {
+  if (!(learn_rate > 0.0 && learn_rate <= 1.0) ||
+      !(held_learn_rate >= 0.0 && held_learn_rate <= learn_rate) ||
+      !(still_learn_rate >= held_learn_rate && still_learn_rate <= learn_rate)) {
+    if (error) *error = "background: need 0 < learn rate <= 1 and 0 <= held rate <= learn rate";
+    return false;
+  }
+  if (row_stride < 1 || row_stride > 16 || warmup_frames < 1) {
+    if (error) *error = "background: row stride must be 1-16 and warm-up >= 1 frame";
+    return false;
+  }
+  if (!(min_sigma_luma > 0.0 && min_sigma_chroma > 0.0 && foreground_sigmas > 0.0)) {
+    if (error) *error = "background: noise floors and the foreground bound must be positive";
+    return false;
+  }
+  return true;
+}
+
+BackgroundModel::BackgroundModel(int width, int height, const BackgroundOptions& options)
+    : options_(options), width_(width & ~1), height_(height & ~1), bw_(width / 2), bh_(height / 2) {
+  y_.assign(static_cast<std::size_t>(width_) * height_, 16.0f);
+  u_.assign(static_cast<std::size_t>(bw_) * bh_, 128.0f);
+  v_.assign(u_.size(), 128.0f);
+  by_.assign(u_.size(), 16.0f);
+  last_.assign(u_.size(), Yuv{});
+  sy_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_luma));
+  sc_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_chroma));
+  iy_.assign(u_.size(), 1.0f / (sy_[0] * sy_[0]));
+  ic_.assign(u_.size(), 1.0f / (sc_[0] * sc_[0]));
+}
+
+Yuv BackgroundModel::BlockOfAnyFormat(const ImageView& image, int bx, int by) {
+  Yuv c;
+  c.y = 0.25f * (LumaOf(image, 2 * bx, 2 * by) + LumaOf(image, 2 * bx + 1, 2 * by) +
+                 LumaOf(image, 2 * bx, 2 * by + 1) + LumaOf(image, 2 * bx + 1, 2 * by + 1));
+  ChromaOf(image, bx, by, &c.u, &c.v);
+  return c;
+}
+
+void BackgroundModel::EstimateGain(const ImageView& image) {
+  // The median ratio of the picture's levels above black to the model's, over a sparse grid of
+  // blocks that are neither dark nor clipped: the exposure, whatever moves in front of it.
+  ratios_.clear();
+  for (int by = 3; by < bh_; by += 8) {
+    for (int bx = 3; bx < bw_; bx += 8) {
+      const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
+      const float model = y_[p] - 16.0f;
+      const float seen = LumaOf(image, 2 * bx, 2 * by) - 16.0f;
+      if (model > 30.0f && seen > 4.0f && seen < 225.0f) ratios_.push_back(seen / model);
+    }
+  }
+  if (ratios_.size() < 16) {
+    gain_ = 1.0;
+  } else {
+    const auto mid = ratios_.begin() + static_cast<std::ptrdiff_t>(ratios_.size() / 2);
+    std::nth_element(ratios_.begin(), mid, ratios_.end());
+    gain_ = std::clamp(static_cast<double>(*mid), 0.25, 4.0);
+  }
+  gain_f_ = static_cast<float>(gain_);
+}
+
+void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
+  if (frames_ == 0) {
+    for (int y = 0; y < height_; ++y) {
+      for (int x = 0; x < width_; ++x)
+        y_[static_cast<std::size_t>(y) * width_ + x] = LumaOf(image, x, y);
+    }
+    for (int by = 0; by < bh_; ++by) {
+      for (int bx = 0; bx < bw_; ++bx) {
+        const std::size_t b = Index(bx, by);
+        ChromaOf(image, bx, by, &u_[b], &v_[b]);
+        const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
+        by_[b] = 0.25f * (y_[p] + y_[p + 1] + y_[p + width_] + y_[p + width_ + 1]);
+        last_[b] = {by_[b], u_[b], v_[b]};
+      }
+    }
+    ++frames_;
+    return;
+  }
+  EstimateGain(image);
+  const float inv = 1.0f / gain_f_;
+  const float k2 = static_cast<float>(options_.foreground_sigmas * options_.foreground_sigmas);
+  // A block row is visited every row_stride frames: the rates of that many frames at once.
+  const auto learn =
+      static_cast<float>(1.0 - std::pow(1.0 - options_.learn_rate, options_.row_stride));
+  const auto held =
+      static_cast<float>(1.0 - std::pow(1.0 - options_.held_learn_rate, options_.row_stride));
+  const auto still =
+      static_cast<float>(1.0 - std::pow(1.0 - options_.still_learn_rate, options_.row_stride));
+  const auto floor_y = static_cast<float>(options_.min_sigma_luma);
+  const auto floor_c = static_cast<float>(options_.min_sigma_chroma);
+  const bool packed = image.format == PixelFormat::kYUYV;
+  for (int by = next_row_; by < bh_; by += options_.row_stride) {
+    const uint8_t* top = packed ? nullptr : image.planes[0].Row(2 * by);
+    const uint8_t* bottom = packed ? nullptr : image.planes[0].Row(2 * by + 1);
+    for (int bx = 0; bx < bw_; ++bx) {
+      const std::size_t b = Index(bx, by);
+      const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
+      // The frame brought to the model's exposure.
+      float seen[4];
+      if (packed) {
+        seen[0] = LumaOf(image, 2 * bx, 2 * by), seen[1] = LumaOf(image, 2 * bx + 1, 2 * by);
+        seen[2] = LumaOf(image, 2 * bx, 2 * by + 1);
+        seen[3] = LumaOf(image, 2 * bx + 1, 2 * by + 1);
+      } else {
+        seen[0] = top[2 * bx], seen[1] = top[2 * bx + 1];
+        seen[2] = bottom[2 * bx], seen[3] = bottom[2 * bx + 1];
+      }
+      for (float& x : seen) x = 16.0f + inv * (x - 16.0f);
+      float u = 128.0f, v = 128.0f;
+      ChromaOf(image, bx, by, &u, &v);
+      u = 128.0f + inv * (u - 128.0f);
+      v = 128.0f + inv * (v - 128.0f);
+      float* model[4] = {&y_[p], &y_[p + 1], &y_[p + width_], &y_[p + width_ + 1]};
+      const float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
+                                (*model[0] + *model[1] + *model[2] + *model[3]));
+      const float du = u - u_[b], dv = v - v_[b];
+      const float z2 = dy * dy / (sy_[b] * sy_[b]) + (du * du + dv * dv) / (sc_[b] * sc_[b]);
+      const bool differs = z2 > k2;
+      // Unchanged since the last visit (within the noise)?
+      const float mean_seen = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3]);
+      const Yuv& last = last_[b];
+      const float cy = mean_seen - last.y, cu = u - last.u, cv = v - last.v;
+      const bool unchanged =
+          cy * cy / (sy_[b] * sy_[b]) + (cu * cu + cv * cv) / (sc_[b] * sc_[b]) < k2;
+      last_[b] = {mean_seen, u, v};
+      const bool kept = !keep.empty() && 2 * bx + 1 >= keep.x0 && 2 * bx < keep.x1 &&
+                        2 * by + 1 >= keep.y0 && 2 * by < keep.y1;
+      const float rate = kept && differs ? held : (!differs ? learn : (unchanged ? still : held));
+      for (int k = 0; k < 4; ++k) *model[k] += rate * (seen[k] - *model[k]);
+      u_[b] += rate * du;
+      v_[b] += rate * dv;
+      // Mean absolute deviation x 1.25 ~ sigma, for a Gaussian (slowly where something differs,
+      // so that a noisier block than the model thought is learnt in the end).
+      sy_[b] = std::max(floor_y, sy_[b] + rate * (1.25f * std::abs(dy) - sy_[b]));
+      sc_[b] = std::max(floor_c, sc_[b] + rate * (0.9f * (std::abs(du) + std::abs(dv)) - sc_[b]));
+      by_[b] = 0.25f * (*model[0] + *model[1] + *model[2] + *model[3]);
+      iy_[b] = 1.0f / (sy_[b] * sy_[b]);
+      ic_[b] = 1.0f / (sc_[b] * sc_[b]);
+    }
+  }
+  next_row_ = (next_row_ + 1) % options_.row_stride;
+  ++frames_;
+}
+
+}  // namespace p4::segment

@@ -1,0 +1,290 @@
+#include "p4/segment/foreground_finder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "p4/segment/union_find.h"
+
+namespace p4::segment {
+namespace {
+
+inline float LumaAt(const ImageView& image, int x, int y) {
+  if (image.format == PixelFormat::kYUYV) return image.planes[0].Row(y)[2 * x];
+  return image.planes[0].Row(y)[x];
+}
+
+// Is this block the ball (any share, any shading) over its background?
+inline bool InTables(const ImageView& image, const ColorLut& lut, uint32_t mask, int x, int y) {
+  uint8_t u = 128, v = 128, luma = 0;
+  switch (image.format) {
+    case PixelFormat::kI420:
+      luma = image.planes[0].Row(y)[x];
+      u = image.planes[1].Row(y / 2)[x / 2], v = image.planes[2].Row(y / 2)[x / 2];
+      break;
+    case PixelFormat::kNV12:
+      luma = image.planes[0].Row(y)[x];
+      u = image.planes[1].Row(y / 2)[2 * (x / 2)], v = image.planes[1].Row(y / 2)[2 * (x / 2) + 1];
+      break;
+    case PixelFormat::kYUYV: {
+      const uint8_t* p = image.planes[0].Row(y);
+      luma = p[2 * x], u = p[4 * (x / 2) + 1], v = p[4 * (x / 2) + 3];
+      break;
+    }
+  }
+  return (lut.Classify(luma, u, v) & mask) != 0;
+}
+
+bool BallBlock(const ImageView& image, const BackgroundModel& bg, const BallColour& ball, int bx,
+               int by, const ForegroundOptions& o, double k2, Unmixed* u) {
+  const Yuv seen = BackgroundModel::BlockOf(image, bx, by), model = bg.Block(bx, by);
+  if (bg.Distance2(seen, model, bx, by) <= k2) return false;
+  *u = Unmix(seen, model, ball, o.unmix);
+  if (u->alpha < o.min_alpha || u->alpha > o.max_alpha) return false;
+  const double sigma = std::hypot(bg.SigmaLuma(bx, by),
+                                  std::sqrt(2.0 * o.unmix.chroma_weight) * bg.SigmaChroma(bx, by));
+  return u->residual <= std::max(o.max_residual_share * u->difference, o.residual_sigmas * sigma);
+}
+
+}  // namespace
+
+bool ForegroundOptions::IsValid(std::string* error) const {
+  if (!(min_alpha > 0.0 && max_alpha > min_alpha) || !(max_residual_share > 0.0) ||
+      !(residual_sigmas >= 0.0) || max_regions < 1 || !(min_luma_contrast >= 0.0)) {
+    if (error) *error = "foreground: need 0 < min alpha < max alpha, positive bounds";
+    return false;
+  }
+  return true;
+}
+
+int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
+                           const BallColour& ball, const Roi& roi_in,
+                           const ForegroundOptions& options, std::vector<CoverageRegion>* out) {
+  out->clear();
+  runs_.clear();
+  const Roi roi =
+      roi_in.empty() ? Roi{0, 0, bg.width(), bg.height()} : roi_in.Clipped(bg.width(), bg.height());
+  if (roi.empty()) return 0;
+  const int bx0 = roi.x0 / 2, bx1 = (roi.x1 + 1) / 2, by0 = roi.y0 / 2, by1 = (roi.y1 + 1) / 2;
+  const double k = bg.options().foreground_sigmas;
+  const double k2 = k * k;
+  std::size_t above_begin = 0, above_end = 0;
+  Unmixed u;
+  for (int by = by0; by < std::min(by1, bg.height() / 2); ++by) {
+    const std::size_t row_begin = runs_.size();
+    int open = -1;
+    for (int bx = bx0; bx <= std::min(bx1, bg.width() / 2); ++bx) {
+      const bool in =
+          bx < std::min(bx1, bg.width() / 2) && BallBlock(image, bg, ball, bx, by, options, k2, &u);
+      if (in && open < 0) open = bx;
+      if (!in && open >= 0) {
+        const int index = static_cast<int>(runs_.size());
+        runs_.push_back({by, open, bx, index});
+        open = -1;
+      }
+    }
+    internal::JoinWithRowAbove(runs_, above_begin, above_end, row_begin);
+    above_begin = row_begin;
+    above_end = runs_.size();
+  }
+  // Each region's block box, then its coverage measure.
+  struct Box {
+    int x0, y0, x1, y1, blocks;
+  };
+  std::vector<Box> boxes(runs_.size(), Box{0, 0, 0, 0, 0});
+  for (std::size_t i = 0; i < runs_.size(); ++i) {
+    const Run& r = runs_[i];
+    Box& b = boxes[static_cast<std::size_t>(internal::FindRoot(runs_, static_cast<int>(i)))];
+    if (b.blocks == 0) {
+      b = {r.x0, r.y, r.x1, r.y + 1, 0};
+    } else {
+      b.x0 = std::min(b.x0, r.x0), b.x1 = std::max(b.x1, r.x1);
+      b.y0 = std::min(b.y0, r.y), b.y1 = std::max(b.y1, r.y + 1);
+    }
+    b.blocks += r.x1 - r.x0;
+  }
+  std::vector<Box> regions;
+  for (std::size_t i = 0; i < runs_.size(); ++i) {
+    if (runs_[i].parent == static_cast<int>(i)) regions.push_back(boxes[i]);
+  }
+  std::sort(regions.begin(), regions.end(),
+            [](const Box& a, const Box& b) { return a.blocks > b.blocks; });
+  for (const Box& b : regions) {
+    if (static_cast<int>(out->size()) >= options.max_regions) break;
+    if (b.blocks > options.max_blocks) continue;
+    // The blocks' pixels and one block around them (the ball's anti-aliased, blurred edge).
+    const Roi window = Roi{2 * b.x0 - 2, 2 * b.y0 - 2, 2 * b.x1 + 2, 2 * b.y1 + 2}.Clipped(
+        bg.width(), bg.height());
+    CoverageRegion measured;
+    if (Measure(image, bg, ball, window, options, &measured) &&
+        measured.region.major_diameter <=
+            options.max_elongation * std::max(1.0, measured.region.minor_diameter) &&
+        measured.region.diameter >= options.min_diameter_px &&
+        measured.region.diameter <= options.max_diameter_px) {
+      measured.blocks = b.blocks;
+      out->push_back(measured);
+    }
+  }
+  std::sort(out->begin(), out->end(), [](const CoverageRegion& a, const CoverageRegion& b) {
+    return a.roundness > b.roundness;
+  });
+  return static_cast<int>(out->size());
+}
+
+bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,
+                               const BallColour& ball, const Roi& window_in,
+                               const ForegroundOptions& options, CoverageRegion* out) {
+  const Roi w =
+      Roi{window_in.x0 & ~1, window_in.y0 & ~1, (window_in.x1 + 1) & ~1, (window_in.y1 + 1) & ~1}
+          .Clipped(bg.width(), bg.height());
+  if (w.empty()) return false;
+  const int bx0 = w.x0 / 2, by0 = w.y0 / 2, bw = (w.x1 - w.x0) / 2, bh = (w.y1 - w.y0) / 2;
+  // Per block: its shading and share when it is the ball; blocks next to the ball's that differ
+  // only faintly are its edge; a block that differs with another colour is something else.
+  block_shade_.assign(static_cast<std::size_t>(bw) * bh, -1.0f);
+  std::vector<float> block_alpha(block_shade_.size(), 0.0f);
+  enum Kind : uint8_t { kNone, kBall, kFaint, kOther };
+  std::vector<uint8_t> kind(block_shade_.size(), kNone);
+  std::vector<float> shades;
+  const double k2 = bg.options().foreground_sigmas * bg.options().foreground_sigmas;
+  for (int j = 0; j < bh; ++j) {
+    for (int i = 0; i < bw; ++i) {
+      const std::size_t b = static_cast<std::size_t>(j) * bw + i;
+      Unmixed u;
+      if (BallBlock(image, bg, ball, bx0 + i, by0 + j, options, k2, &u)) {
+        kind[b] = kBall;
+        block_alpha[b] = static_cast<float>(std::min(1.0, u.alpha));
+        if (u.alpha > 0.3) {
+          block_shade_[b] = static_cast<float>(u.shade);
+          shades.push_back(static_cast<float>(u.shade));
+        }
+        continue;
+      }
+      const Yuv seen = BackgroundModel::BlockOf(image, bx0 + i, by0 + j);
+      const Yuv model = bg.Block(bx0 + i, by0 + j);
+      const double d2 = bg.Distance2(seen, model, bx0 + i, by0 + j);
+      if (d2 <= 4.0) continue;  // within 2 sigmas: background
+      kind[b] = d2 <= k2 ? kFaint : kOther;
+      if (kind[b] == kFaint) {
+        // A faint edge: its share from its colour, for when the luma cannot tell.
+        block_alpha[b] =
+            static_cast<float>(std::clamp(Unmix(seen, model, ball, options.unmix).alpha, 0.0, 1.0));
+      }
+    }
+  }
+  // Faint blocks count only beside a ball block.
+  std::vector<uint8_t> counts(kind.size(), 0);
+  for (int j = 0; j < bh; ++j) {
+    for (int i = 0; i < bw; ++i) {
+      const std::size_t b = static_cast<std::size_t>(j) * bw + i;
+      if (kind[b] == kBall) {
+        counts[b] = 1;
+        continue;
+      }
+      if (kind[b] != kFaint) continue;
+      for (int dj = -1; dj <= 1 && !counts[b]; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int jj = j + dj, ii = i + di;
+          if (jj >= 0 && jj < bh && ii >= 0 && ii < bw &&
+              kind[static_cast<std::size_t>(jj) * bw + ii] == kBall) {
+            counts[b] = 1;
+            break;
+          }
+        }
+      }
+    }
+  }
+  if (shades.empty()) {
+    for (std::size_t b = 0; b < block_alpha.size(); ++b) {
+      if (kind[b] == kBall) shades.push_back(1.0f);
+    }
+    if (shades.empty()) return false;
+  }
+  std::nth_element(shades.begin(), shades.begin() + static_cast<std::ptrdiff_t>(shades.size() / 2),
+                   shades.end());
+  const float median_shade = shades[shades.size() / 2];
+  // Per pixel: the ball's share from the luma, between the background's and the ball's at the
+  // block's shading; where they are too alike, the block's share from its colour.
+  double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  int core = 0, in_tables = 0;  // pixels mostly ball, and of those the ones the tables call ball
+  int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
+  for (int y = w.y0; y < w.y1; ++y) {
+    const int j = (y - w.y0) / 2;
+    for (int x = w.x0; x < w.x1; ++x) {
+      const int i = (x - w.x0) / 2;
+      const std::size_t b = static_cast<std::size_t>(j) * bw + i;
+      if (!counts[b]) continue;
+      float shade = block_shade_[b];
+      if (shade <= 0.0f) {
+        // A block without its own shading (an edge): its neighbours' (the ball's dark bottom
+        // is darker than its middle), else the region's.
+        float sum_shade = 0.0f;
+        int n = 0;
+        for (int dj = -1; dj <= 1; ++dj) {
+          for (int di = -1; di <= 1; ++di) {
+            const int jj = j + dj, ii = i + di;
+            if (jj < 0 || jj >= bh || ii < 0 || ii >= bw) continue;
+            const float s = block_shade_[static_cast<std::size_t>(jj) * bw + ii];
+            if (s > 0.0f) sum_shade += s, ++n;
+          }
+        }
+        shade = n ? sum_shade / n : median_shade;
+      }
+      const float ball_luma = 16.0f + shade * (ball.lit.y - 16.0f);
+      const float back = bg.Luma(x, y);
+      const float contrast = ball_luma - back;
+      double alpha;
+      if (block_alpha[b] >= options.interior_alpha) {
+        alpha = 1.0;  // inside the ball: all of it, however its shading varies in the block
+      } else if (std::abs(contrast) >= options.min_luma_contrast) {
+        alpha = (LumaAt(image, x, y) - back) / contrast;
+      } else {
+        alpha = block_alpha[b];
+      }
+      alpha = std::clamp(alpha, 0.0, 1.0);
+      if (alpha < 0.05) continue;
+      if (options.lut && alpha >= options.core_alpha) {
+        ++core;
+        in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
+      }
+      sum += alpha;
+      sx += alpha * x, sy += alpha * y;
+      sxx += alpha * x * x, syy += alpha * y * y, sxy += alpha * x * y;
+      x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1),
+      y1 = std::max(y1, y + 1);
+    }
+  }
+  if (sum < 0.5) return false;
+  CoverageRegion& r = *out;
+  r = CoverageRegion{};
+  r.coverage = sum;
+  r.shade = median_shade;
+  Region& g = r.region;
+  g.cx = sx / sum;
+  g.cy = sy / sum;
+  g.area = static_cast<int>(std::lround(sum));
+  g.x0 = x0, g.y0 = y0, g.x1 = x1, g.y1 = y1;
+  g.diameter = 2.0 * std::sqrt(sum / M_PI);
+  // Moments of the coverage (each pixel adds 1/12 of its own extent).
+  const double cxx = sxx / sum - g.cx * g.cx + 1.0 / 12.0;
+  const double cyy = syy / sum - g.cy * g.cy + 1.0 / 12.0;
+  const double cxy = sxy / sum - g.cx * g.cy;
+  const MomentDiameters d = DiametersFromMoments(cxx, cyy, cxy);
+  g.minor_diameter = d.minor;
+  g.major_diameter = d.major;
+  g.touches_border = x0 == 0 || y0 == 0 || x1 == bg.width() || y1 == bg.height();
+  // A disc of diameter D smeared over a length L: variance D^2/16 across, D^2/16 + L^2/12 along.
+  const double along = d.major * d.major / 16.0, across = g.diameter * g.diameter / 16.0;
+  r.streak_px = std::sqrt(std::max(0.0, 12.0 * (along - across)));
+  // A round region (not a blur streak) shows the ball's own colour in its core: the colour
+  // tables must agree with part of it (skin and shirts unmix as a shaded ball, the tables say no).
+  if (options.lut && core >= options.core_min_pixels &&
+      d.major < options.core_max_elongation * d.minor && in_tables < options.core_share * core) {
+    return false;
+  }
+  // The ellipse of the moments (semi-axes 2 sqrt(lambda)) has area pi minor major / 4.
+  r.roundness = std::min(1.0, sum / (M_PI / 4.0 * std::max(1.0, d.minor) * std::max(1.0, d.major)));
+  r.streak_angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+  return true;
+}
+
+}  // namespace p4::segment

@@ -1,0 +1,86 @@
+// Finding the ball as what differs from the background AND has the ball's colour mixed with that
+// background (beyond the paper; its run-length rows and union-find, §3.1, at block resolution).
+//
+// 1. Blocks (2x2 pixels, the chroma's resolution) that differ from the BackgroundModel by more
+//    than its foreground bound and whose colour unmixes as the ball over their background
+//    (ball_colour.h: any shading, any share of the block) are run-length encoded per block row
+//    and joined into regions by union-find.
+// 2. Each region is measured at full resolution by coverage: every pixel's share of the ball,
+//    from its luma between the background's and the ball's at the local shading (from the
+//    block's chroma where the luma says too little). The coverage-weighted centre is the ball's
+//    centre at mid-exposure, not its lit half; the coverage sum is the disc's area whatever the
+//    motion blur; the weighted moments give the streak's direction and length (the ball's image
+//    speed over the exposure).
+//
+// Pixel coordinates: centres at integers. Pure: buffers are kept between calls.
+#pragma once
+
+#include <vector>
+
+#include "p4/core/image.h"
+#include "p4/segment/background_model.h"
+#include "p4/segment/ball_colour.h"
+#include "p4/segment/blob_finder.h"
+#include "p4/segment/color_classes.h"
+
+namespace p4::segment {
+
+struct ForegroundOptions {
+  double min_alpha = 0.12;  // a block must be at least this much ball
+  double max_alpha = 1.6;
+  double max_residual_share = 0.3;  // residual <= this share of the block's difference...
+  double residual_sigmas = 3.0;     // ...or within this many of the block's noise
+  double min_luma_contrast = 12.0;  // below it a pixel's coverage comes from its block's colour
+  double interior_alpha = 0.9;      // a block this much ball is inside it: its pixels count whole
+  int max_regions = 16;
+  // Shapes that are not a ball, even blurred: too large, or longer than this times their width.
+  int max_blocks = 1500;
+  double max_elongation = 8.0;
+  // The ball's size range in this camera (the tracker sets it from the focal length: no nearer
+  // than about a metre); regions outside it are not kept.
+  double min_diameter_px = 1.5, max_diameter_px = 60.0;
+  // A round region (major < core_max_elongation x minor: not a blur streak) with at least
+  // core_min_pixels pixels covered by >= core_alpha must show the ball's colour in these colour
+  // classes (the paper's tables) for at least core_share of them: skin or a shirt unmixes as a
+  // shaded ball, the tables tell them apart. Null: no such check.
+  const ColorLut* lut = nullptr;
+  uint32_t lut_mask = 0xffffffffu;
+  double core_alpha = 0.5, core_share = 0.2, core_max_elongation = 2.0;
+  int core_min_pixels = 4;
+  UnmixOptions unmix;
+
+  bool IsValid(std::string* error) const;
+};
+
+// A region found on the background, measured by coverage.
+struct CoverageRegion {
+  Region region;              // cx, cy coverage-weighted; area = coverage sum (rounded); diameters
+                              // from the coverage: diameter = 2 sqrt(coverage / pi), minor/major
+                              // from the weighted moments
+  double coverage = 0.0;      // sum of the pixels' ball shares, px^2 (the disc's area)
+  double shade = 1.0;         // median shading of its blocks (1 = the ball's lit colour)
+  double streak_px = 0.0;     // length of the motion-blur streak along the major axis, px
+  double streak_angle = 0.0;  // its direction, radians from the image x axis
+  int blocks = 0;
+  double roundness = 0.0;  // coverage / area of the ellipse of its moments (1 for a disc)
+};
+
+class ForegroundFinder {
+ public:
+  // Regions inside `roi` (whole image when empty), the roundest first (a blurred ball is an
+  // even streak; legs, arms and shirts are ragged); returns their number.
+  // Precondition: the model is ready and has the image's size.
+  int Find(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
+           const Roi& roi, const ForegroundOptions& options, std::vector<CoverageRegion>* out);
+
+  // Measures a window (e.g. a colour region's box grown by a margin) by coverage.
+  // False when nothing in it is the ball.
+  bool Measure(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
+               const Roi& window, const ForegroundOptions& options, CoverageRegion* out);
+
+ private:
+  std::vector<Run> runs_;
+  std::vector<float> block_shade_;  // per block of the window being measured
+};
+
+}  // namespace p4::segment

