@@ -8,7 +8,9 @@
 
 #include "p4/geometry/epipolar.h"
 #include "p4/geometry/triangulation.h"
+#include "p4/segment/background_model.h"
 #include "p4/segment/blob_finder.h"
+#include "p4/segment/foreground_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/renderer.h"
@@ -33,6 +35,54 @@ const I420Image& Frame(int width, int height) {
   }
   return image;
 }
+
+// The background model's update per frame (every row_stride-th block row, in turn).
+void BM_BackgroundUpdate(benchmark::State& state) {
+  const I420Image& image =
+      Frame(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  segment::BackgroundModel model(image.width(), image.height(), {});
+  model.Update(image.View());
+  for (auto _ : state) model.Update(image.View());
+  state.SetItemsProcessed(state.iterations() * image.width() * image.height());
+}
+BENCHMARK(BM_BackgroundUpdate)
+    ->ArgNames({"w", "h"})
+    ->Args({640, 480})
+    ->Args({1280, 720})
+    ->Args({1920, 1080})
+    ->Unit(benchmark::kMicrosecond);
+
+// Whole-image search on the background (the ball found, unmixed and measured by coverage),
+// after the model has learnt a picture without the ball.
+void BM_ForegroundWholeImage(benchmark::State& state) {
+  const int w = static_cast<int>(state.range(0)), h = static_cast<int>(state.range(1));
+  const Rig rig = sim::ClubRig(1, w, h, false);
+  sim::SceneOptions scene;
+  sim::RenderOptions options;
+  options.static_supersampling = 1;
+  sim::CameraRenderer renderer(rig.cameras[0], scene, options);
+  I420Image empty, with_ball;
+  segment::BackgroundModel model(w, h, {});
+  for (int k = 0; k < 20; ++k) {
+    renderer.Render(sim::FrameContent{}, k, &empty);
+    model.Update(empty.View());
+  }
+  sim::FrameContent content;
+  content.ball = {Eigen::Vector3d(0.4, 0.1, 0.3)};
+  renderer.Render(content, 21, &with_ball);
+  segment::ForegroundFinder finder;
+  std::vector<segment::CoverageRegion> regions;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(finder.Find(with_ball.View(), model, segment::BallColour::Orange(), {},
+                                         {}, &regions));
+  }
+  state.counters["regions"] = static_cast<double>(regions.size());
+}
+BENCHMARK(BM_ForegroundWholeImage)
+    ->ArgNames({"w", "h"})
+    ->Args({640, 480})
+    ->Args({1280, 720})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_SegmentFullFrame(benchmark::State& state) {
   const I420Image& image =
