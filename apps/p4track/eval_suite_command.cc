@@ -43,6 +43,7 @@ int RunSelf(const std::vector<std::string>& args, const std::string& log) {
   std::vector<std::string> all = {"p4track"};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
+  argv.reserve(all.size() + 1);
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
   const pid_t pid = fork();
@@ -169,7 +170,7 @@ int Run(const SuiteArgs& a) {
       if (figures.is_discarded()) failed = "eval output";
     }
     if (!failed.empty()) {
-      row["failed"] = failed + " (see " + log + ")";
+      row["failed"] = fmt::format("{} (see {})", failed, log);
       spdlog::warn("{}: {} failed, see {}", name, failed, log);
     } else {
       row["figures"] = figures;

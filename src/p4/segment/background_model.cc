@@ -152,14 +152,13 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
       const float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
                                 (*model[0] + *model[1] + *model[2] + *model[3]));
       const float du = u - u_[b], dv = v - v_[b];
-      const float z2 = dy * dy / (sy_[b] * sy_[b]) + (du * du + dv * dv) / (sc_[b] * sc_[b]);
+      const float z2 = dy * dy * iy_[b] + (du * du + dv * dv) * ic_[b];
       const bool differs = z2 > k2;
       // Unchanged since the last visit (within the noise)?
       const float mean_seen = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3]);
       const Yuv& last = last_[b];
       const float cy = mean_seen - last.y, cu = u - last.u, cv = v - last.v;
-      const bool unchanged =
-          cy * cy / (sy_[b] * sy_[b]) + (cu * cu + cv * cv) / (sc_[b] * sc_[b]) < k2;
+      const bool unchanged = cy * cy * iy_[b] + (cu * cu + cv * cv) * ic_[b] < k2;
       last_[b] = {mean_seen, u, v};
       const bool kept = !keep.empty() && 2 * bx + 1 >= keep.x0 && 2 * bx < keep.x1 &&
                         2 * by + 1 >= keep.y0 && 2 * by < keep.y1;

@@ -40,6 +40,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       backgrounds_(rig.cameras.size()),
       foreground_finders_(rig.cameras.size()),
       coverage_(rig.cameras.size()),
+      measured_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       tracker_(options.tracker) {
@@ -75,11 +76,15 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
   }
   segment::BackgroundModel& background = backgrounds_[c];
-  if (options_.use_background &&
+  const bool keeps_background = options_.use_background || options_.measure_on_background;
+  if (keeps_background &&
       (background.width() != (image.width & ~1) || background.height() != (image.height & ~1))) {
     background = segment::BackgroundModel(image.width, image.height, options_.background);
   }
   const bool on_background = options_.use_background && background.ready();
+  // The colour tables find; the background only measures (centre and size by coverage).
+  const bool measure_only =
+      !options_.use_background && options_.measure_on_background && background.ready();
   segment::ForegroundFinder& foreground = foreground_finders_[c];
   std::vector<segment::CoverageRegion>& coverage = coverage_[c];
   coverage.clear();
@@ -90,6 +95,19 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
   const auto colour_search = [&](const segment::Roi& roi) {
     const int n = finders_[c].Find(image, lut_, roi, options_.segment, &regions);
+    if (measure_only) {
+      measured_[c].assign(n, std::nullopt);
+      for (int k = 0; k < n; ++k) {
+        const segment::Region& r = regions[k];
+        segment::CoverageRegion m;
+        const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
+        if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
+                               &m) &&
+            std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) < 0.5 * r.diameter + 2.0) {
+          measured_[c][k] = m.region;
+        }
+      }
+    }
     if (!on_background) return n;
     coverage.clear();
     for (int k = 0; k < n; ++k) {
@@ -125,9 +143,11 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   const bool from_colour = !on_background;
   int kept = 0;
   for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
-    const segment::Region& r = from_colour ? regions[k] : coverage[k].region;
+    const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
+    const segment::Region& r =
+        !from_colour ? coverage[k].region : (by_coverage ? *measured_[c][k] : regions[k]);
     std::optional<double> coverage_diameter;
-    if (!from_colour) coverage_diameter = r.diameter;
+    if (by_coverage) coverage_diameter = r.diameter;
     // A ball, even blurred, is a compact blob: not a wall, not a line.
     if (r.area > options_.max_area_px ||
         r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
@@ -151,7 +171,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     out->push_back(d);
   }
-  if (options_.use_background) background.Update(image, search.roi);
+  if (keeps_background) background.Update(image, search.roi);
 }
 
 FrameSetResult FrameSetTracker::Process(TimeNs t,

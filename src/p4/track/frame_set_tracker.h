@@ -58,6 +58,10 @@ struct FrameSetOptions {
   // look-up tables stay the first, fast search inside the predicted window. Off: the colour
   // tables alone (the paper's detector with today's refinements).
   bool use_background = false;
+  // With the colour tables alone (use_background false): keep the background model anyway and
+  // measure each colour region by its coverage (the centre of the whole ball, not of the pixels
+  // the tables took: a shaded bottom falls out of the tables).
+  bool measure_on_background = false;
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   segment::BallColour ball_colour;
@@ -150,6 +154,8 @@ class FrameSetTracker {
   std::vector<segment::BackgroundModel> backgrounds_;
   std::vector<segment::ForegroundFinder> foreground_finders_;
   std::vector<std::vector<segment::CoverageRegion>> coverage_;  // per camera
+  // Per camera: its colour regions measured by coverage (when the background measures).
+  std::vector<std::vector<std::optional<segment::Region>>> measured_;
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;

@@ -71,6 +71,34 @@ TEST_F(FrameSetTrackerTest, TriangulatesTheBallAndNarrowsTheSearch) {
   }
 }
 
+// The background detectors: after frames without the ball the model is ready; the ball is then
+// triangulated as with the colour tables (coverage mode: the tables' regions measured on the
+// background; background mode: found on it) and a static orange spot is never the ball.
+TEST_F(FrameSetTrackerTest, BackgroundModesTriangulateTheBall) {
+  for (const bool find : {false, true}) {
+    FrameSetOptions options;
+    options.use_background = find;
+    options.measure_on_background = !find;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    for (int k = 0; k < 12; ++k) tracker.Process(FromSeconds(k / 120.0), Frames(std::nullopt, k));
+    double worst = 0.0;
+    for (int k = 0; k < 10; ++k) {
+      const auto result = tracker.Process(FromSeconds((12 + k) / 120.0), Frames(Ball(k), 12 + k));
+      ASSERT_TRUE(result.measurement.has_value()) << (find ? "background " : "coverage ") << k;
+      EXPECT_EQ(result.measurement->cameras, 2);
+      worst = std::max(worst, (result.measurement->position - Ball(k)).norm());
+      for (const auto& d : result.detections) {
+        if (!d.accepted) continue;
+        // The coverage diameter is the ball's, within a third of a pixel.
+        const double expected = 2.0 * 0.02 * rig_.cameras[d.camera].fx /
+                                (rig_.cameras[d.camera].cam_from_world * Ball(k)).z();
+        EXPECT_NEAR(d.diameter_px, expected, 0.35) << k;
+      }
+    }
+    EXPECT_LT(worst, 0.006) << (find ? "background" : "coverage");
+  }
+}
+
 // Cameras segmented by a pool of threads: exactly the single-threaded results, frame by frame.
 TEST_F(FrameSetTrackerTest, ThreadsChangeNothingButTheSpeed) {
   FrameSetOptions one, two;
