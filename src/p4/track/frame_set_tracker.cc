@@ -93,33 +93,29 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // lying on the floor do not) and is measured by its coverage. Only when the colours find
   // nothing, what differs from the background with the ball's colour mixed in (a blurred streak,
   // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
+  // A colour region measured by coverage on the background, if it differs from it there.
+  const auto measure = [&](const segment::Region& r) -> std::optional<segment::CoverageRegion> {
+    segment::CoverageRegion m;
+    const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
+    if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
+                           &m) &&
+        std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) < 0.5 * r.diameter + 2.0) {
+      return m;
+    }
+    return std::nullopt;
+  };
   const auto colour_search = [&](const segment::Roi& roi) {
     const int n = finders_[c].Find(image, lut_, roi, options_.segment, &regions);
     if (measure_only) {
       measured_[c].assign(n, std::nullopt);
       for (int k = 0; k < n; ++k) {
-        const segment::Region& r = regions[k];
-        segment::CoverageRegion m;
-        const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
-        if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
-                               &m) &&
-            std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) < 0.5 * r.diameter + 2.0) {
-          measured_[c][k] = m.region;
-        }
+        if (const auto m = measure(regions[k])) measured_[c][k] = m->region;
       }
     }
     if (!on_background) return n;
     coverage.clear();
     for (int k = 0; k < n; ++k) {
-      const segment::Region& r = regions[k];
-      segment::CoverageRegion measured;
-      const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
-      if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
-                             &measured) &&
-          std::hypot(measured.region.cx - r.cx, measured.region.cy - r.cy) <
-              0.5 * r.diameter + 2.0) {
-        coverage.push_back(measured);
-      }
+      if (const auto m = measure(regions[k])) coverage.push_back(*m);
     }
     return static_cast<int>(coverage.size());
   };
