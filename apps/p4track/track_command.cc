@@ -50,6 +50,7 @@ int Run(const TrackArgs& a) {
   options.use_background =
       a.detector == "background" || (a.detector == "auto" && a.ball == "white");
   options.measure_on_background = a.detector == "coverage";
+  options.mask_with_background = a.detector == "masked";
   options.segment.stride = a.stride;
   options.single_camera_fallback = !a.no_single_camera;
   options.epipolar_px = a.epipolar_px;
@@ -120,11 +121,12 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");
   cmd->add_option("--detector", args->detector,
-                  "colour: the colour tables (the paper's); coverage: the tables, each region "
-                  "measured by coverage on a learnt background; background: what differs from a "
+                  "colour: the colour tables (the paper's); masked: the tables where the picture "
+                  "differs from a learnt background; coverage: the tables, each region measured "
+                  "by coverage on the background; background: what differs from a "
                   "learnt background with the ball's colour mixed in, measured by coverage; auto: "
                   "background for a white ball, colour otherwise")
-      ->check(CLI::IsMember({"auto", "colour", "coverage", "background"}))
+      ->check(CLI::IsMember({"auto", "colour", "masked", "coverage", "background"}))
       ->capture_default_str();
   cmd->add_option("--stride", args->stride, "Test every N-th pixel of a row")
       ->check(CLI::Range(1, 4))

@@ -97,7 +97,8 @@ double SumSquares(double m) { return m < 0 ? 0.0 : m * (m + 1) * (2 * m + 1) / 6
 }  // namespace
 
 int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi_in,
-                     const SegmentOptions& options, std::vector<Region>* regions) {
+                     const SegmentOptions& options, std::vector<Region>* regions,
+                     const BlockMask* blocks) {
   regions->clear();
   runs_.clear();
   const Roi roi = roi_in.empty() ? Roi{0, 0, image.width, image.height}
@@ -125,13 +126,17 @@ int BlobFinder::Find(const ImageView& image, const ColorLut& lut, const Roi& roi
           const uint8_t* v = image.planes[2].Row(chroma_row);
           for (int cx = cx0; cx < cx1; ++cx) {
             const uint32_t m = lut.u[u[cx]] & lut.v[v[cx]] & options.mask;
-            if (m) candidates_.push_back({cx, m});
+            if (m && (!blocks || blocks->data[chroma_row * blocks->width + cx])) {
+              candidates_.push_back({cx, m});
+            }
           }
         } else {
           const uint8_t* uv = image.planes[1].Row(chroma_row);
           for (int cx = cx0; cx < cx1; ++cx) {
             const uint32_t m = lut.u[uv[2 * cx]] & lut.v[uv[2 * cx + 1]] & options.mask;
-            if (m) candidates_.push_back({cx, m});
+            if (m && (!blocks || blocks->data[chroma_row * blocks->width + cx])) {
+              candidates_.push_back({cx, m});
+            }
           }
         }
       }

@@ -64,12 +64,23 @@ struct SegmentOptions {
   bool IsValid(std::string* error) const;
 };
 
+// Which 2x2 blocks may hold the object (e.g. those that differ from the background): one byte a
+// block, row-major, `width` blocks a row; 0 = skip.
+struct BlockMask {
+  const uint8_t* data = nullptr;
+  int width = 0, height = 0;
+  bool Allows(int x, int y) const { return data[(y >> 1) * width + (x >> 1)] != 0; }
+};
+
 class BlobFinder {
  public:
   // Finds regions inside `roi` (the whole image when empty), largest first. Returns their
-  // number. Preconditions: view planes valid for its format; options valid.
+  // number. With `blocks`, only pixels of allowed blocks can be the object (I420 and NV12 at
+  // stride 1). Preconditions: view planes valid for its format; options valid; the mask covers
+  // the image.
   int Find(const ImageView& image, const ColorLut& lut, const Roi& roi,
-           const SegmentOptions& options, std::vector<Region>* regions);
+           const SegmentOptions& options, std::vector<Region>* regions,
+           const BlockMask* blocks = nullptr);
 
   // The runs of the last call (for overlays and tests).
   const std::vector<Run>& runs() const { return runs_; }

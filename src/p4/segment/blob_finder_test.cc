@@ -107,6 +107,22 @@ TEST_F(BlobFinderTest, TwoOrangeRegionsComeLargestFirst) {
   EXPECT_GT(regions_[0].area, regions_[1].area);
 }
 
+// A block mask (what differs from the background) hides what it does not allow: the large
+// disc's blocks are masked out, the small one stays, at the same place.
+TEST_F(BlobFinderTest, ABlockMaskHidesWhatItDoesNotAllow) {
+  const I420Image img = Paint(128, 64, [](double x, double y) {
+    return std::max(Disc(x, y, 20.0, 30.0, 4.0), Disc(x, y, 90.0, 30.0, 9.0));
+  });
+  std::vector<uint8_t> allowed(64 * 32, 1);
+  for (int by = 0; by < 32; ++by) {
+    for (int bx = 38; bx < 64; ++bx) allowed[by * 64 + bx] = 0;  // x >= 76
+  }
+  const BlockMask blocks{allowed.data(), 64, 32};
+  ASSERT_EQ(finder_.Find(img.View(), lut_, {}, options_, &regions_, &blocks), 1);
+  EXPECT_NEAR(regions_[0].cx, 20.0, 0.4);
+  EXPECT_NEAR(regions_[0].cy, 30.0, 0.4);
+}
+
 TEST_F(BlobFinderTest, BallTouchingTheImageBorder) {
   const I420Image img =
       Paint(64, 48, [](double x, double y) { return Disc(x, y, 1.0, 20.0, 6.0); });

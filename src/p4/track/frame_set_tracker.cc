@@ -41,6 +41,8 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       foreground_finders_(rig.cameras.size()),
       coverage_(rig.cameras.size()),
       measured_(rig.cameras.size()),
+      masks_(rig.cameras.size()),
+      mask_work_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       tracker_(options.tracker) {
@@ -76,7 +78,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
   }
   segment::BackgroundModel& background = backgrounds_[c];
-  const bool keeps_background = options_.use_background || options_.measure_on_background;
+  const bool keeps_background =
+      options_.use_background || options_.measure_on_background || options_.mask_with_background;
   if (keeps_background &&
       (background.width() != (image.width & ~1) || background.height() != (image.height & ~1))) {
     background = segment::BackgroundModel(image.width, image.height, options_.background);
@@ -104,8 +107,48 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     return std::nullopt;
   };
+  const bool masked = options_.mask_with_background && background.ready();
+  // The blocks of `roi` that differ from the background, grown by one block.
+  const auto mask_blocks = [&](const segment::Roi& roi_in) {
+    const segment::Roi roi =
+        roi_in.empty() ? segment::Roi{0, 0, image.width, image.height} : roi_in;
+    const int bw = background.width() / 2, bh = background.height() / 2;
+    std::vector<uint8_t>& mask = masks_[c];
+    std::vector<uint8_t>& work = mask_work_[c];
+    if (static_cast<int>(mask.size()) != bw * bh) mask.assign(static_cast<std::size_t>(bw) * bh, 0);
+    if (work.size() != mask.size()) work.assign(mask.size(), 0);
+    const int bx0 = std::max(0, roi.x0 / 2 - 1), bx1 = std::min(bw, (roi.x1 + 1) / 2 + 1);
+    const int by0 = std::max(0, roi.y0 / 2 - 1), by1 = std::min(bh, (roi.y1 + 1) / 2 + 1);
+    const double k2 = options_.mask_sigmas * options_.mask_sigmas;
+    for (int by = by0; by < by1; ++by) {
+      for (int bx = bx0; bx < bx1; ++bx) {
+        work[static_cast<std::size_t>(by) * bw + bx] =
+            background.BlockDistance2(image, bx, by) > k2;
+      }
+    }
+    for (int by = by0; by < by1; ++by) {
+      for (int bx = bx0; bx < bx1; ++bx) {
+        uint8_t any = 0;
+        for (int dy = -1; dy <= 1 && !any; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = bx + dx, y = by + dy;
+            if (x >= bx0 && x < bx1 && y >= by0 && y < by1 &&
+                work[static_cast<std::size_t>(y) * bw + x]) {
+              any = 1;
+              break;
+            }
+          }
+        }
+        mask[static_cast<std::size_t>(by) * bw + bx] = any;
+      }
+    }
+    return segment::BlockMask{mask.data(), bw, bh};
+  };
   const auto colour_search = [&](const segment::Roi& roi) {
-    const int n = finders_[c].Find(image, lut_, roi, options_.segment, &regions);
+    segment::BlockMask blocks;
+    if (masked) blocks = mask_blocks(roi);
+    const int n =
+        finders_[c].Find(image, lut_, roi, options_.segment, &regions, masked ? &blocks : nullptr);
     if (measure_only) {
       measured_[c].assign(n, std::nullopt);
       for (int k = 0; k < n; ++k) {

@@ -62,6 +62,10 @@ struct FrameSetOptions {
   // measure each colour region by its coverage (the centre of the whole ball, not of the pixels
   // the tables took: a shaded bottom falls out of the tables).
   bool measure_on_background = false;
+  // With the colour tables: only blocks that differ from the background (by mask_sigmas, grown
+  // by a block) can be the ball: a ball-coloured floor, banner or lamp never merges with it.
+  bool mask_with_background = false;
+  double mask_sigmas = 3.0;
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   segment::BallColour ball_colour;
@@ -156,6 +160,7 @@ class FrameSetTracker {
   std::vector<std::vector<segment::CoverageRegion>> coverage_;  // per camera
   // Per camera: its colour regions measured by coverage (when the background measures).
   std::vector<std::vector<std::optional<segment::Region>>> measured_;
+  std::vector<std::vector<uint8_t>> masks_, mask_work_;  // per camera: blocks that differ
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;
