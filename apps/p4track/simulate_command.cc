@@ -119,6 +119,10 @@ int Run(const SimulateArgs& a) {
   sim::SceneOptions scene;
   scene.look = a.look == "random" ? sim::RandomLook(a.seed, a.ball.empty() ? "any" : a.ball)
                                   : sim::PresetLook(a.look);
+  if (a.look != "random" && a.ball == "any") {
+    throw Error("--ball any: the colour is drawn with --look random only; with --look " + a.look +
+                " use orange, white or yellow");
+  }
   if (a.look != "random" && !a.ball.empty()) scene.look.ball = sim::BallColour(a.ball);
   if (a.orange_shirt) scene.look.shirt_b = sim::BallColour("orange");
   scene.players = !a.no_players;
