@@ -145,6 +145,7 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   enum Kind : uint8_t { kNone, kBall, kFaint, kOther };
   std::vector<uint8_t> kind(block_shade_.size(), kNone);
   std::vector<float> shades;
+  double sum_a = 0.0, sum_as = 0.0;
   const double k2 = bg.options().foreground_sigmas * bg.options().foreground_sigmas;
   for (int j = 0; j < bh; ++j) {
     for (int i = 0; i < bw; ++i) {
@@ -153,10 +154,12 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
       if (BallBlock(image, bg, ball, bx0 + i, by0 + j, options, k2, &u)) {
         kind[b] = kBall;
         block_alpha[b] = static_cast<float>(std::min(1.0, u.alpha));
-        if (u.alpha > 0.3) {
+        if (u.alpha > options.own_shade_alpha) {
           block_shade_[b] = static_cast<float>(u.shade);
           shades.push_back(static_cast<float>(u.shade));
         }
+        // The region's shading, weighted by share (a blur streak's blocks are all faint).
+        sum_a += u.alpha, sum_as += u.alpha * u.shade;
         continue;
       }
       const Yuv seen = BackgroundModel::BlockOf(image, bx0 + i, by0 + j);
@@ -201,7 +204,8 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   }
   std::nth_element(shades.begin(), shades.begin() + static_cast<std::ptrdiff_t>(shades.size() / 2),
                    shades.end());
-  const float median_shade = shades[shades.size() / 2];
+  const float median_shade =
+      sum_a > 0.0 ? static_cast<float>(sum_as / sum_a) : shades[shades.size() / 2];
   // Per pixel: the ball's share from the luma, between the background's and the ball's at the
   // block's shading; where they are too alike, the block's share from its colour.
   double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;

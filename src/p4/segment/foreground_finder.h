@@ -32,6 +32,8 @@ struct ForegroundOptions {
   double residual_sigmas = 3.0;     // ...or within this many of the block's noise
   double min_luma_contrast = 12.0;  // below it a pixel's coverage comes from its block's colour
   double interior_alpha = 0.9;      // a block this much ball is inside it: its pixels count whole
+  double own_shade_alpha = 0.3;     // a block this much ball uses its own shading, the others the
+                                    // region's (share-weighted: a blur streak's are all faint)
   int max_regions = 16;
   // Shapes that are not a ball, even blurred: too large, or longer than this times their width.
   int max_blocks = 1500;

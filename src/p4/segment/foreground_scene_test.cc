@@ -206,10 +206,10 @@ TEST(ForegroundScene, ATwentyPixelStreakAtASixtiethOfASecond) {
   const double exposure = 1.0 / 60.0;
   const Bias bias = BiasOver(scene, BallColour::Orange(), velocity, exposure);
   EXPECT_EQ(bias.found, bias.tries);
-  // Targets 0.1 px; measured 0.10 px and +0.6 px: the streak's faint ends are summed with noise
-  // (README, "Detection").
-  EXPECT_LE(bias.centre, 0.2);
-  EXPECT_LE(std::abs(bias.diameter), 0.7);
+  // Targets 0.1 px; measured 0.08 px and +0.41 px: the diameter's target is missed (README,
+  // "Measured on many worlds").
+  EXPECT_LE(bias.centre, 0.1);
+  EXPECT_LE(std::abs(bias.diameter), 0.5);
   // The streak's length says how fast the ball crossed the picture.
   const Eigen::Vector3d p(-0.3, 0.1, 0.3);
   const auto samples = Exposure(p, velocity, exposure, 48);
@@ -220,7 +220,7 @@ TEST(ForegroundScene, ATwentyPixelStreakAtASixtiethOfASecond) {
   std::printf("streak %.1f px, measured %.1f px\n", length, e.streak_px);
   ASSERT_TRUE(e.found);
   EXPECT_GT(length, 15.0);
-  EXPECT_NEAR(e.streak_px, length, 0.25 * length);  // measured 21 % short
+  EXPECT_NEAR(e.streak_px, length, 0.25 * length);  // measured 20 % short
 }
 
 TEST(ForegroundScene, ABallOfThreePixels) {
