@@ -30,7 +30,7 @@ namespace p4::track {
 
 struct FrameSetOptions {
   segment::SegmentOptions segment;  // mask is set from the classes ("ball*")
-  int candidates_per_camera = 4;
+  int candidates_per_camera = 8;
   int max_area_px = 4000;       // larger regions are not the ball (walls, shirts, lines)
   double max_elongation = 8.0;  // major / minor diameter: blur stretches a ball, a line more
   // A region that stays within static_px of the same place for static_frames frame sets is part
