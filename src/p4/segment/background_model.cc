@@ -3,34 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/segment/pixel_access.h"
+
 namespace p4::segment {
 namespace {
 
-// A block's chroma pair in any of the formats (YUYV: its top row's).
-inline void ChromaOf(const ImageView& image, int bx, int by, float* u, float* v) {
-  switch (image.format) {
-    case PixelFormat::kI420:
-      *u = image.planes[1].Row(by)[bx];
-      *v = image.planes[2].Row(by)[bx];
-      return;
-    case PixelFormat::kNV12: {
-      const uint8_t* uv = image.planes[1].Row(by);
-      *u = uv[2 * bx];
-      *v = uv[2 * bx + 1];
-      return;
-    }
-    case PixelFormat::kYUYV: {
-      const uint8_t* p = image.planes[0].Row(2 * by) + 4 * bx;
-      *u = p[1];
-      *v = p[3];
-      return;
-    }
-  }
-}
+using internal::LumaAt;
 
-inline float LumaOf(const ImageView& image, int x, int y) {
-  if (image.format == PixelFormat::kYUYV) return image.planes[0].Row(y)[2 * x];
-  return image.planes[0].Row(y)[x];
+// A block's chroma pair (YUYV: its top row's).
+inline void ChromaOf(const ImageView& image, int bx, int by, float* u, float* v) {
+  uint8_t cu = 128, cv = 128;
+  internal::ChromaAt(image, 2 * bx, 2 * by, &cu, &cv);
+  *u = cu, *v = cv;
 }
 
 }  // namespace
@@ -68,8 +52,8 @@ BackgroundModel::BackgroundModel(int width, int height, const BackgroundOptions&
 
 Yuv BackgroundModel::BlockOfAnyFormat(const ImageView& image, int bx, int by) {
   Yuv c;
-  c.y = 0.25f * (LumaOf(image, 2 * bx, 2 * by) + LumaOf(image, 2 * bx + 1, 2 * by) +
-                 LumaOf(image, 2 * bx, 2 * by + 1) + LumaOf(image, 2 * bx + 1, 2 * by + 1));
+  c.y = 0.25f * (LumaAt(image, 2 * bx, 2 * by) + LumaAt(image, 2 * bx + 1, 2 * by) +
+                 LumaAt(image, 2 * bx, 2 * by + 1) + LumaAt(image, 2 * bx + 1, 2 * by + 1));
   ChromaOf(image, bx, by, &c.u, &c.v);
   return c;
 }
@@ -82,7 +66,7 @@ void BackgroundModel::EstimateGain(const ImageView& image) {
     for (int bx = 3; bx < bw_; bx += 8) {
       const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
       const float model = y_[p] - 16.0f;
-      const float seen = LumaOf(image, 2 * bx, 2 * by) - 16.0f;
+      const float seen = LumaAt(image, 2 * bx, 2 * by) - 16.0f;
       if (model > 30.0f && seen > 4.0f && seen < 225.0f) ratios_.push_back(seen / model);
     }
   }
@@ -100,7 +84,7 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
   if (frames_ == 0) {
     for (int y = 0; y < height_; ++y) {
       for (int x = 0; x < width_; ++x)
-        y_[static_cast<std::size_t>(y) * width_ + x] = LumaOf(image, x, y);
+        y_[static_cast<std::size_t>(y) * width_ + x] = LumaAt(image, x, y);
     }
     for (int by = 0; by < bh_; ++by) {
       for (int bx = 0; bx < bw_; ++bx) {
@@ -136,9 +120,9 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
       // The frame brought to the model's exposure.
       float seen[4];
       if (packed) {
-        seen[0] = LumaOf(image, 2 * bx, 2 * by), seen[1] = LumaOf(image, 2 * bx + 1, 2 * by);
-        seen[2] = LumaOf(image, 2 * bx, 2 * by + 1);
-        seen[3] = LumaOf(image, 2 * bx + 1, 2 * by + 1);
+        seen[0] = LumaAt(image, 2 * bx, 2 * by), seen[1] = LumaAt(image, 2 * bx + 1, 2 * by);
+        seen[2] = LumaAt(image, 2 * bx, 2 * by + 1);
+        seen[3] = LumaAt(image, 2 * bx + 1, 2 * by + 1);
       } else {
         seen[0] = top[2 * bx], seen[1] = top[2 * bx + 1];
         seen[2] = bottom[2 * bx], seen[3] = bottom[2 * bx + 1];

@@ -3,42 +3,38 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/segment/pixel_access.h"
 #include "p4/segment/union_find.h"
 
 namespace p4::segment {
 namespace {
 
-inline float LumaAt(const ImageView& image, int x, int y) {
-  if (image.format == PixelFormat::kYUYV) return image.planes[0].Row(y)[2 * x];
-  return image.planes[0].Row(y)[x];
+using internal::LumaAt;
+
+// Does the colour tables' class mask take pixel (x, y)?
+inline bool InTables(const ImageView& image, const ColorLut& lut, uint32_t mask, int x, int y) {
+  uint8_t u = 128, v = 128;
+  internal::ChromaAt(image, x, y, &u, &v);
+  return (lut.Classify(LumaAt(image, x, y), u, v) & mask) != 0;
+}
+
+// A block's colour, the background's there, and their distance (sigmas squared).
+struct BlockLook {
+  Yuv seen, model;
+  double distance2 = 0.0;
+};
+
+BlockLook LookAt(const ImageView& image, const BackgroundModel& bg, int bx, int by) {
+  BlockLook look{BackgroundModel::BlockOf(image, bx, by), bg.Block(bx, by)};
+  look.distance2 = bg.Distance2(look.seen, look.model, bx, by);
+  return look;
 }
 
 // Is this block the ball (any share, any shading) over its background?
-inline bool InTables(const ImageView& image, const ColorLut& lut, uint32_t mask, int x, int y) {
-  uint8_t u = 128, v = 128, luma = 0;
-  switch (image.format) {
-    case PixelFormat::kI420:
-      luma = image.planes[0].Row(y)[x];
-      u = image.planes[1].Row(y / 2)[x / 2], v = image.planes[2].Row(y / 2)[x / 2];
-      break;
-    case PixelFormat::kNV12:
-      luma = image.planes[0].Row(y)[x];
-      u = image.planes[1].Row(y / 2)[2 * (x / 2)], v = image.planes[1].Row(y / 2)[2 * (x / 2) + 1];
-      break;
-    case PixelFormat::kYUYV: {
-      const uint8_t* p = image.planes[0].Row(y);
-      luma = p[2 * x], u = p[4 * (x / 2) + 1], v = p[4 * (x / 2) + 3];
-      break;
-    }
-  }
-  return (lut.Classify(luma, u, v) & mask) != 0;
-}
-
-bool BallBlock(const ImageView& image, const BackgroundModel& bg, const BallColour& ball, int bx,
+bool BallBlock(const BlockLook& look, const BackgroundModel& bg, const BallColour& ball, int bx,
                int by, const ForegroundOptions& o, double k2, Unmixed* u) {
-  const Yuv seen = BackgroundModel::BlockOf(image, bx, by), model = bg.Block(bx, by);
-  if (bg.Distance2(seen, model, bx, by) <= k2) return false;
-  *u = Unmix(seen, model, ball, o.unmix);
+  if (look.distance2 <= k2) return false;
+  *u = Unmix(look.seen, look.model, ball, o.unmix);
   if (u->alpha < o.min_alpha || u->alpha > o.max_alpha) return false;
   const double sigma = std::hypot(bg.SigmaLuma(bx, by),
                                   std::sqrt(2.0 * o.unmix.chroma_weight) * bg.SigmaChroma(bx, by));
@@ -73,8 +69,8 @@ int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
     const std::size_t row_begin = runs_.size();
     int open = -1;
     for (int bx = bx0; bx <= std::min(bx1, bg.width() / 2); ++bx) {
-      const bool in =
-          bx < std::min(bx1, bg.width() / 2) && BallBlock(image, bg, ball, bx, by, options, k2, &u);
+      const bool in = bx < std::min(bx1, bg.width() / 2) &&
+                      BallBlock(LookAt(image, bg, bx, by), bg, ball, bx, by, options, k2, &u);
       if (in && open < 0) open = bx;
       if (!in && open >= 0) {
         const int index = static_cast<int>(runs_.size());
@@ -141,41 +137,40 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   // Per block: its shading and share when it is the ball; blocks next to the ball's that differ
   // only faintly are its edge; a block that differs with another colour is something else.
   block_shade_.assign(static_cast<std::size_t>(bw) * bh, -1.0f);
-  std::vector<float> block_alpha(block_shade_.size(), 0.0f);
+  block_alpha_.assign(block_shade_.size(), 0.0f);
   enum Kind : uint8_t { kNone, kBall, kFaint, kOther };
-  std::vector<uint8_t> kind(block_shade_.size(), kNone);
-  std::vector<float> shades;
+  kind_.assign(block_shade_.size(), kNone);
+  std::vector<float>& block_alpha = block_alpha_;
+  std::vector<uint8_t>& kind = kind_;
   double sum_a = 0.0, sum_as = 0.0;
   const double k2 = bg.options().foreground_sigmas * bg.options().foreground_sigmas;
   for (int j = 0; j < bh; ++j) {
     for (int i = 0; i < bw; ++i) {
       const std::size_t b = static_cast<std::size_t>(j) * bw + i;
       Unmixed u;
-      if (BallBlock(image, bg, ball, bx0 + i, by0 + j, options, k2, &u)) {
+      const BlockLook look = LookAt(image, bg, bx0 + i, by0 + j);
+      if (BallBlock(look, bg, ball, bx0 + i, by0 + j, options, k2, &u)) {
         kind[b] = kBall;
         block_alpha[b] = static_cast<float>(std::min(1.0, u.alpha));
         if (u.alpha > options.own_shade_alpha) {
           block_shade_[b] = static_cast<float>(u.shade);
-          shades.push_back(static_cast<float>(u.shade));
         }
         // The region's shading, weighted by share (a blur streak's blocks are all faint).
         sum_a += u.alpha, sum_as += u.alpha * u.shade;
         continue;
       }
-      const Yuv seen = BackgroundModel::BlockOf(image, bx0 + i, by0 + j);
-      const Yuv model = bg.Block(bx0 + i, by0 + j);
-      const double d2 = bg.Distance2(seen, model, bx0 + i, by0 + j);
-      if (d2 <= 4.0) continue;  // within 2 sigmas: background
-      kind[b] = d2 <= k2 ? kFaint : kOther;
+      if (look.distance2 <= 4.0) continue;  // within 2 sigmas: background
+      kind[b] = look.distance2 <= k2 ? kFaint : kOther;
       if (kind[b] == kFaint) {
         // A faint edge: its share from its colour, for when the luma cannot tell.
-        block_alpha[b] =
-            static_cast<float>(std::clamp(Unmix(seen, model, ball, options.unmix).alpha, 0.0, 1.0));
+        block_alpha[b] = static_cast<float>(
+            std::clamp(Unmix(look.seen, look.model, ball, options.unmix).alpha, 0.0, 1.0));
       }
     }
   }
   // Faint blocks count only beside a ball block.
-  std::vector<uint8_t> counts(kind.size(), 0);
+  counts_.assign(kind.size(), 0);
+  std::vector<uint8_t>& counts = counts_;
   for (int j = 0; j < bh; ++j) {
     for (int i = 0; i < bw; ++i) {
       const std::size_t b = static_cast<std::size_t>(j) * bw + i;
@@ -196,16 +191,9 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
       }
     }
   }
-  if (shades.empty()) {
-    for (std::size_t b = 0; b < block_alpha.size(); ++b) {
-      if (kind[b] == kBall) shades.push_back(1.0f);
-    }
-    if (shades.empty()) return false;
-  }
-  std::nth_element(shades.begin(), shades.begin() + static_cast<std::ptrdiff_t>(shades.size() / 2),
-                   shades.end());
-  const float median_shade =
-      sum_a > 0.0 ? static_cast<float>(sum_as / sum_a) : shades[shades.size() / 2];
+  // No ball block: nothing here is the ball. (Every ball block's share is at least min_alpha.)
+  if (!(sum_a > 0.0)) return false;
+  const auto region_shade = static_cast<float>(sum_as / sum_a);
   // Per pixel: the ball's share from the luma, between the background's and the ball's at the
   // block's shading; where they are too alike, the block's share from its colour.
   double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
@@ -231,7 +219,7 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
             if (s > 0.0f) sum_shade += s, ++n;
           }
         }
-        shade = n ? sum_shade / n : median_shade;
+        shade = n ? sum_shade / n : region_shade;
       }
       const float ball_luma = 16.0f + shade * (ball.lit.y - 16.0f);
       const float back = bg.Luma(x, y);
@@ -261,7 +249,7 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   CoverageRegion& r = *out;
   r = CoverageRegion{};
   r.coverage = sum;
-  r.shade = median_shade;
+  r.shade = region_shade;
   Region& g = r.region;
   g.cx = sx / sum;
   g.cy = sy / sum;

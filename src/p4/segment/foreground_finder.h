@@ -60,7 +60,7 @@ struct CoverageRegion {
                               // from the coverage: diameter = 2 sqrt(coverage / pi), minor/major
                               // from the weighted moments
   double coverage = 0.0;      // sum of the pixels' ball shares, px^2 (the disc's area)
-  double shade = 1.0;         // median shading of its blocks (1 = the ball's lit colour)
+  double shade = 1.0;         // its blocks' shading weighted by share (1: the lit colour)
   double streak_px = 0.0;     // length of the motion-blur streak along the major axis, px
   double streak_angle = 0.0;  // its direction, radians from the image x axis
   int blocks = 0;
@@ -82,7 +82,9 @@ class ForegroundFinder {
 
  private:
   std::vector<Run> runs_;
-  std::vector<float> block_shade_;  // per block of the window being measured
+  // Per block of the window being measured: shading, share, kind, and whether it counts.
+  std::vector<float> block_shade_, block_alpha_;
+  std::vector<uint8_t> kind_, counts_;
 };
 
 }  // namespace p4::segment
