@@ -126,6 +126,39 @@ int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
   return static_cast<int>(out->size());
 }
 
+BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const BackgroundModel& bg,
+                                            const Roi& roi_in, double sigmas) {
+  const Roi roi = roi_in.empty() ? Roi{0, 0, image.width, image.height} : roi_in;
+  const int bw = bg.width() / 2, bh = bg.height() / 2;
+  if (static_cast<int>(mask_.size()) != bw * bh) mask_.assign(static_cast<std::size_t>(bw) * bh, 0);
+  if (differs_.size() != mask_.size()) differs_.assign(mask_.size(), 0);
+  const int bx0 = std::max(0, roi.x0 / 2 - 1), bx1 = std::min(bw, (roi.x1 + 1) / 2 + 1);
+  const int by0 = std::max(0, roi.y0 / 2 - 1), by1 = std::min(bh, (roi.y1 + 1) / 2 + 1);
+  const double k2 = sigmas * sigmas;
+  for (int by = by0; by < by1; ++by) {
+    for (int bx = bx0; bx < bx1; ++bx) {
+      differs_[static_cast<std::size_t>(by) * bw + bx] = bg.BlockDistance2(image, bx, by) > k2;
+    }
+  }
+  for (int by = by0; by < by1; ++by) {
+    for (int bx = bx0; bx < bx1; ++bx) {
+      uint8_t any = 0;
+      for (int dy = -1; dy <= 1 && !any; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = bx + dx, y = by + dy;
+          if (x >= bx0 && x < bx1 && y >= by0 && y < by1 &&
+              differs_[static_cast<std::size_t>(y) * bw + x]) {
+            any = 1;
+            break;
+          }
+        }
+      }
+      mask_[static_cast<std::size_t>(by) * bw + bx] = any;
+    }
+  }
+  return BlockMask{mask_.data(), bw, bh};
+}
+
 bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,
                                const BallColour& ball, const Roi& window_in,
                                const ForegroundOptions& options, CoverageRegion* out) {

@@ -75,6 +75,12 @@ class ForegroundFinder {
   int Find(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
            const Roi& roi, const ForegroundOptions& options, std::vector<CoverageRegion>* out);
 
+  // The blocks of `roi` (whole image when empty) that differ from the background by more than
+  // `sigmas`, grown by one block, as a mask for BlobFinder (valid until the next call; blocks
+  // outside the ROI's are left as they were). Precondition: the model has the image's size.
+  BlockMask DifferingBlocks(const ImageView& image, const BackgroundModel& background,
+                            const Roi& roi, double sigmas);
+
   // Measures a window (e.g. a colour region's box grown by a margin) by coverage.
   // False when nothing in it is the ball.
   bool Measure(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
@@ -85,6 +91,7 @@ class ForegroundFinder {
   // Per block of the window being measured: shading, share, kind, and whether it counts.
   std::vector<float> block_shade_, block_alpha_;
   std::vector<uint8_t> kind_, counts_;
+  std::vector<uint8_t> mask_, differs_;  // DifferingBlocks: the mask and the blocks before growth
 };
 
 }  // namespace p4::segment

@@ -41,8 +41,6 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       foreground_finders_(rig.cameras.size()),
       coverage_(rig.cameras.size()),
       measured_(rig.cameras.size()),
-      masks_(rig.cameras.size()),
-      mask_work_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       tracker_(options.tracker) {
@@ -91,11 +89,6 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   segment::ForegroundFinder& foreground = foreground_finders_[c];
   std::vector<segment::CoverageRegion>& coverage = coverage_[c];
   coverage.clear();
-  // The colour tables first (paper §3.4): in the predicted window, else the whole image. On a
-  // known background a colour region must also differ from it (lamps, banners, lines, a ball
-  // lying on the floor do not) and is measured by its coverage. Only when the colours find
-  // nothing, what differs from the background with the ball's colour mixed in (a blurred streak,
-  // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
   // A colour region measured by coverage on the background, if it differs from it there.
   const auto measure = [&](const segment::Region& r) -> std::optional<segment::CoverageRegion> {
     segment::CoverageRegion m;
@@ -108,57 +101,25 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     return std::nullopt;
   };
   const bool masked = options_.mask_with_background && background.ready();
-  // The blocks of `roi` that differ from the background, grown by one block.
-  const auto mask_blocks = [&](const segment::Roi& roi_in) {
-    const segment::Roi roi =
-        roi_in.empty() ? segment::Roi{0, 0, image.width, image.height} : roi_in;
-    const int bw = background.width() / 2, bh = background.height() / 2;
-    std::vector<uint8_t>& mask = masks_[c];
-    std::vector<uint8_t>& work = mask_work_[c];
-    if (static_cast<int>(mask.size()) != bw * bh) mask.assign(static_cast<std::size_t>(bw) * bh, 0);
-    if (work.size() != mask.size()) work.assign(mask.size(), 0);
-    const int bx0 = std::max(0, roi.x0 / 2 - 1), bx1 = std::min(bw, (roi.x1 + 1) / 2 + 1);
-    const int by0 = std::max(0, roi.y0 / 2 - 1), by1 = std::min(bh, (roi.y1 + 1) / 2 + 1);
-    const double k2 = options_.mask_sigmas * options_.mask_sigmas;
-    for (int by = by0; by < by1; ++by) {
-      for (int bx = bx0; bx < bx1; ++bx) {
-        work[static_cast<std::size_t>(by) * bw + bx] =
-            background.BlockDistance2(image, bx, by) > k2;
-      }
-    }
-    for (int by = by0; by < by1; ++by) {
-      for (int bx = bx0; bx < bx1; ++bx) {
-        uint8_t any = 0;
-        for (int dy = -1; dy <= 1 && !any; ++dy) {
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int x = bx + dx, y = by + dy;
-            if (x >= bx0 && x < bx1 && y >= by0 && y < by1 &&
-                work[static_cast<std::size_t>(y) * bw + x]) {
-              any = 1;
-              break;
-            }
-          }
-        }
-        mask[static_cast<std::size_t>(by) * bw + bx] = any;
-      }
-    }
-    return segment::BlockMask{mask.data(), bw, bh};
-  };
+  // The colour tables first (paper §3.4): in the predicted window, else the whole image. On a
+  // known background a colour region must also differ from it (lamps, banners, lines, a ball
+  // lying on the floor do not) and is measured by its coverage. Only when the colours find
+  // nothing, what differs from the background with the ball's colour mixed in (a blurred streak,
+  // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
   const auto colour_search = [&](const segment::Roi& roi) {
     segment::BlockMask blocks;
-    if (masked) blocks = mask_blocks(roi);
+    if (masked) {
+      blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas);
+    }
     const int n =
         finders_[c].Find(image, lut_, roi, options_.segment, &regions, masked ? &blocks : nullptr);
-    if (measure_only) {
-      measured_[c].assign(n, std::nullopt);
-      for (int k = 0; k < n; ++k) {
-        if (const auto m = measure(regions[k])) measured_[c][k] = m->region;
-      }
-    }
+    if (!measure_only && !on_background) return n;
+    measured_[c].assign(n, std::nullopt);
+    for (int k = 0; k < n; ++k) measured_[c][k] = measure(regions[k]);
     if (!on_background) return n;
     coverage.clear();
-    for (int k = 0; k < n; ++k) {
-      if (const auto m = measure(regions[k])) coverage.push_back(*m);
+    for (const auto& m : measured_[c]) {
+      if (m) coverage.push_back(*m);
     }
     return static_cast<int>(coverage.size());
   };
@@ -184,7 +145,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
     const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
     const segment::Region& r =
-        !from_colour ? coverage[k].region : (by_coverage ? *measured_[c][k] : regions[k]);
+        !from_colour ? coverage[k].region : (by_coverage ? measured_[c][k]->region : regions[k]);
     std::optional<double> coverage_diameter;
     if (by_coverage) coverage_diameter = r.diameter;
     // A ball, even blurred, is a compact blob: not a wall, not a line.

@@ -159,8 +159,7 @@ class FrameSetTracker {
   std::vector<segment::ForegroundFinder> foreground_finders_;
   std::vector<std::vector<segment::CoverageRegion>> coverage_;  // per camera
   // Per camera: its colour regions measured by coverage (when the background measures).
-  std::vector<std::vector<std::optional<segment::Region>>> measured_;
-  std::vector<std::vector<uint8_t>> masks_, mask_work_;  // per camera: blocks that differ
+  std::vector<std::vector<std::optional<segment::CoverageRegion>>> measured_;
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;
