@@ -18,7 +18,6 @@
 
 #include "commands.h"
 #include "p4/core/error.h"
-#include "p4/core/table.h"
 #include "p4/eval/suite.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/run_files.h"
@@ -57,29 +56,6 @@ int RunSelf(const std::vector<std::string>& args, const std::string& log) {
   int status = 0;
   if (waitpid(pid, &status, 0) < 0) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// The ball's size in pixels as the scene's cameras see it: per camera the median over the frames
-// in play (ball in the picture), then the smallest of the cameras.
-double BallPixels(const std::string& sim_dir) {
-  const Rig rig = ReadRig((fs::path(sim_dir) / "rig.yaml").string());
-  const auto truth = ReadTruthCsv((fs::path(sim_dir) / "truth.csv").string());
-  double smallest = 0.0;
-  for (const Camera& camera : rig.cameras) {
-    std::vector<double> sizes;
-    for (const TruthRow& row : truth) {
-      if (!row.in_play) continue;
-      const Eigen::Vector3d c = camera.cam_from_world * row.position;
-      const auto px = camera.Project(row.position);
-      if (c.z() <= 0.1 || !px || !camera.InImage(*px)) continue;
-      sizes.push_back(camera.fx * table::kBallDiameter / c.z());
-    }
-    if (sizes.empty()) continue;
-    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
-    const double median = sizes[sizes.size() / 2];
-    smallest = smallest == 0.0 ? median : std::min(smallest, median);
-  }
-  return smallest;
 }
 
 struct Target {
@@ -148,7 +124,9 @@ int Run(const SuiteArgs& a) {
     if (RunSelf(simulate, log) != 0) {
       failed = "simulate";
     } else {
-      row["ball_px"] = std::round(BallPixels(sim) * 10.0) / 10.0;
+      const double ball_px =
+          BallPixels(ReadRig(sim + "/rig.yaml"), ReadTruthCsv(sim + "/truth.csv"));
+      row["ball_px"] = std::round(ball_px * 10.0) / 10.0;
       std::ifstream look_file(sim + "/look.json");
       const auto look = nlohmann::json::parse(look_file, nullptr, false);
       if (!look.is_discarded()) {

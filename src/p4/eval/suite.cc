@@ -8,6 +8,7 @@
 #include <random>
 
 #include "p4/core/error.h"
+#include "p4/core/table.h"
 
 namespace p4 {
 namespace {
@@ -149,6 +150,26 @@ nlohmann::ordered_json SuiteScene::ToJson() const {
           {"look", look},
           {"ball", ball},
           {"seconds", seconds}};
+}
+
+double BallPixels(const Rig& rig, const std::vector<TruthRow>& truth) {
+  double smallest = 0.0;
+  for (const Camera& camera : rig.cameras) {
+    std::vector<double> sizes;
+    for (const TruthRow& row : truth) {
+      if (!row.in_play) continue;
+      const Eigen::Vector3d c = camera.cam_from_world * row.position;
+      const auto px = camera.Project(row.position);
+      if (c.z() <= 0.1 || !px || !camera.InImage(*px)) continue;
+      sizes.push_back(camera.fx * table::kBallDiameter / c.z());
+    }
+    if (sizes.empty()) continue;
+    std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2),
+                     sizes.end());
+    const double median = sizes[sizes.size() / 2];
+    smallest = smallest == 0.0 ? median : std::min(smallest, median);
+  }
+  return smallest;
 }
 
 }  // namespace p4

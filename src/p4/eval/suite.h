@@ -21,6 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "p4/geometry/rig.h"
+#include "p4/io/run_files.h"
+
 namespace p4 {
 
 struct SuiteScene {
@@ -55,5 +58,10 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
 
 // Seed of scene k of a set (see above).
 uint64_t SuiteSeed(const std::string& set, int k);
+
+// The ball's diameter in pixels as a scene's cameras see it: per camera the median over the
+// truth rows in play with the ball in the picture, then the smallest of the cameras (0 when no
+// camera sees it).
+double BallPixels(const Rig& rig, const std::vector<TruthRow>& truth);
 
 }  // namespace p4

@@ -357,16 +357,13 @@ void CameraRenderer::RenderStatic() {
     }
     // A spare ball lying still.
     if (look.spare_ball) {
-      const Eigen::Vector3d oc = origin - *look.spare_ball;
-      const double a = d.squaredNorm(), b = oc.dot(d);
-      const double disc = b * b - a * (oc.squaredNorm() - table::kBallRadius * table::kBallRadius);
-      if (disc >= 0.0) {
-        const double t = (-b - std::sqrt(disc)) / a;
-        if (t > 0 && t < best) {
-          best = t;
-          const Eigen::Vector3d normal = (origin + t * d - *look.spare_ball) / table::kBallRadius;
-          color = Shade(look.ball, normal, look.light, look.ball_ambient);
-        }
+      const double r = table::kBallRadius;
+      const Ellipsoid spare{*look.spare_ball, {r, r, r}, look.ball};
+      double t;
+      if (HitEllipsoid(spare, origin, d, &t) && t < best) {
+        best = t;
+        const Eigen::Vector3d normal = (origin + t * d - spare.c) / r;
+        color = Shade(look.ball, normal, look.light, look.ball_ambient);
       }
     }
     // The net's mesh: a see-through dark layer in the plane x = 0.
