@@ -20,7 +20,7 @@ namespace {
 struct TrackArgs {
   std::string rig, out, classes, ball = "orange", filter = "p4";
   std::vector<std::string> sources;
-  bool no_roi = false, no_single_camera = false, no_smoothing = false;
+  bool no_roi = false, no_single_camera = false, no_smoothing = false, no_confirm = false;
   std::string detector = "auto";
   int stride = 1, threads = 1;
   double epipolar_px = 4.0;
@@ -45,6 +45,7 @@ int Run(const TrackArgs& a) {
   }
   track::FrameSetOptions options;
   options.use_roi = !a.no_roi;
+  options.confirm_tracks = !a.no_confirm;
   // auto: the background detector for a white ball (colour alone cannot single it out among
   // lines, lamps and walls), the colour tables for the others (docs/DECISIONS.md, Detection).
   options.use_background =
@@ -120,6 +121,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->check(CLI::IsMember({"orange", "white", "yellow"}))
       ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");
+  cmd->add_flag("--no-confirm", args->no_confirm,
+                "Start a track from any two measurements that agree (the paper's way) instead of "
+                "waiting until the candidate has flown 10 cm in 4 frame sets");
   cmd->add_option("--detector", args->detector,
                   "colour: the colour tables (the paper's); masked: the tables where the picture "
                   "differs from a learnt background; coverage: the tables, each region measured "

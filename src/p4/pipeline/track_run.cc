@@ -10,6 +10,7 @@
 #include "p4/io/event_files.h"
 #include "p4/io/run_files.h"
 #include "p4/pipeline/frame_set_reader.h"
+#include "p4/track/result_hold.h"
 
 namespace p4 {
 
@@ -117,6 +118,9 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     smoothing.fit.model.gravity = options.tracker.kalman.gravity;
     smoother.emplace(rig.cameras[0], smoothing);
   }
+  // New tracks are confirmed by the ball's flight: the rows wait for the revisions that brings.
+  std::optional<track::ResultHold> hold;
+  if (options.confirm_tracks && rig.size() >= 2) hold.emplace(options.initiator.max_span_s);
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   FrameSet set;
@@ -143,6 +147,8 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     published.clear();
     if (smoother) {
       for (const auto& r : smoother->Push(result)) record(r);
+    } else if (hold) {
+      for (const auto& r : hold->Push(result)) record(r);
     } else {
       record(result);
     }
@@ -172,6 +178,9 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   }
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
+  }
+  if (hold) {
+    for (const auto& r : hold->Flush()) record(r);
   }
   if (game.enabled) {
     publish(detector.Flush());

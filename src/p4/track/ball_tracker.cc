@@ -126,7 +126,7 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
         last_position_ = filter_.state().head<3>();
         pending_.reset();
         used = true;
-      } else {
+      } else if (options_.restart_on_refusal) {
         // Refused: a sound multi-camera measurement restarts the track at once (a hit), with the
         // velocity from where the ball was; a lesser one waits for a second that agrees with it.
         if (m->cameras >= 2 && m->residual_px <= options_.sound_residual_px) {

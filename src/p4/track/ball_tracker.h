@@ -46,6 +46,9 @@ struct TrackerOptions {
   double ball_radius = 0.02;
   double init_velocity_sigma = 3.0;  // m/s, of a velocity from two measurements
   double sound_residual_px = 2.0;    // a multi-camera measurement this consistent may restart
+  // A measurement the gate refuses restarts the track (at once when sound, else with a second
+  // that agrees). Off: it is left out, and the caller starts new tracks (TrackInitiator).
+  bool restart_on_refusal = true;
 
   bool IsValid(std::string* error) const;
 };

@@ -12,7 +12,7 @@
 namespace p4::track {
 
 bool FrameSetOptions::IsValid(std::string* error) const {
-  if (!segment.IsValid(error) || !tracker.IsValid(error)) return false;
+  if (!segment.IsValid(error) || !tracker.IsValid(error) || !initiator.IsValid(error)) return false;
   if (candidates_per_camera < 1 || !(epipolar_px > 0.0) || !(reprojection_px > 0.0)) {
     if (error) *error = "candidates, epipolar and reprojection bounds must be positive";
     return false;
@@ -43,7 +43,11 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       measured_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
-      tracker_(options.tracker) {
+      tracker_options_(options.tracker),
+      initiator_(options.initiator) {
+  // New tracks come from the initiator: a refused measurement must not restart the filter.
+  if (options.confirm_tracks && rig.size() >= 2) tracker_options_.restart_on_refusal = false;
+  tracker_ = BallTracker(tracker_options_);
   options_.segment.mask = classes.MaskOf("ball");
   if (options.threads > 1 && rig.size() > 1) {
     pool_ = std::make_unique<CameraPool>(std::min(options.threads, rig.size()));
@@ -130,31 +134,63 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     sized.max_diameter_px = std::min(sized.max_diameter_px, 2.0 * table::kBallRadius * camera.fx);
     return foreground.Find(image, background, options_.ball_colour, roi, sized, &coverage);
   };
+  // On a known background both detectors look: the colour tables' regions that differ from it,
+  // then what differs with the ball's colour mixed in and is not one of those (a white hall has
+  // white regions everywhere; the ball must not wait for them to go).
+  const auto both = [&](const segment::Roi& roi) {
+    const int from_tables = colour_search(roi);
+    if (!on_background) return from_tables;
+    std::vector<segment::CoverageRegion> merged(coverage.begin(), coverage.begin() + from_tables);
+    const int more = background_search(roi);
+    for (int k = 0; k < more; ++k) {
+      const segment::Region& r = coverage[k].region;
+      const bool known =
+          std::any_of(merged.begin(), merged.begin() + from_tables, [&](const auto& m) {
+            return std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) <
+                   0.5 * m.region.diameter + 1.0;
+          });
+      if (!known) merged.push_back(coverage[k]);
+    }
+    coverage = std::move(merged);
+    return static_cast<int>(coverage.size());
+  };
   int found = 0;
-  if (!search.roi.empty()) {
-    found = colour_search(search.roi);
-    if (found == 0 && on_background) found = background_search(search.roi);
-  }
+  if (!search.roi.empty()) found = both(search.roi);
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
-    found = colour_search({});
-    if (found == 0 && on_background) found = background_search({});
+    found = both({});
   }
   const bool from_colour = !on_background;
-  int kept = 0;
-  for (int k = 0; k < found && kept < options_.candidates_per_camera; ++k) {
+  // Every region is looked at (a static spot must stay known however many there are). Regions
+  // that were at the same place in the last set (a letter, a lamp; the ball in play moves) come
+  // after the others; those static for static_frames sets are dropped; the first
+  // candidates_per_camera are kept.
+  const auto region_of = [&](int k) -> const segment::Region& {
     const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
-    const segment::Region& r =
-        !from_colour ? coverage[k].region : (by_coverage ? measured_[c][k]->region : regions[k]);
-    std::optional<double> coverage_diameter;
-    if (by_coverage) coverage_diameter = r.diameter;
+    return !from_colour ? coverage[k].region : (by_coverage ? measured_[c][k]->region : regions[k]);
+  };
+  std::vector<std::pair<bool, int>> order;  // (still, region)
+  for (int k = 0; k < found; ++k) {
+    const segment::Region& r = region_of(k);
     // A ball, even blurred, is a compact blob: not a wall, not a line.
     if (r.area > options_.max_area_px ||
-        r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter) ||
-        IsStatic(c, {r.cx, r.cy})) {
+        r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter)) {
       continue;
     }
-    ++kept;
+    const int count = SpotCount(c, {r.cx, r.cy});
+    if (count >= options_.static_frames) continue;
+    order.emplace_back(count > 1, k);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (static_cast<int>(order.size()) > options_.candidates_per_camera) {
+    order.resize(options_.candidates_per_camera);
+  }
+  for (const auto& [still, k] : order) {
+    const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
+    const segment::Region& r = region_of(k);
+    std::optional<double> coverage_diameter;
+    if (by_coverage) coverage_diameter = r.diameter;
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
     if (coverage_diameter) {
       d.diameter_px = *coverage_diameter;  // the coverage sum: the disc's area, blur or not
@@ -196,21 +232,61 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   } else {
     for (int c = 0; c < present; ++c) search(c);
   }
-  for (int c = 0; c < n; ++c) AgeStaticSpots(c);
+  for (int c = 0; c < n; ++c) AgeStaticSpots(c, result.searches[c]);
   const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;
-  result.measurement = Associate(candidates, predicted, &used);
+  const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
+  const bool confirming = options_.confirm_tracks && n >= 2;
+  std::optional<Tracklet> confirmed;
+  if (confirming) {
+    // Every distinct candidate of this time-stamp goes to the initiator, best first.
+    std::vector<int> offset(n, 0);
+    for (int c = 1; c < n; ++c)
+      offset[c] = offset[c - 1] + static_cast<int>(candidates[c - 1].size());
+    std::vector<TrackletPoint> points;
+    std::vector<bool> taken_detection(offset[n - 1] + candidates[n - 1].size(), false);
+    for (const Hypothesis& h : hypotheses) {
+      TrackletPoint p{t, ToMeasurement(h), {}};
+      for (const auto& [c, k] : h.members) p.detections.push_back(offset[c] + k);
+      if (std::any_of(p.detections.begin(), p.detections.end(),
+                      [&](int i) { return taken_detection[i]; })) {
+        continue;
+      }
+      for (int i : p.detections) taken_detection[i] = true;
+      points.push_back(std::move(p));
+    }
+    confirmed = initiator_.Push(t, points);
+  }
+  if (const Hypothesis* best = Pick(hypotheses, predicted)) {
+    result.measurement = ToMeasurement(*best);
+    used = best->members;
+  }
   // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
   // to continue a track (a lone view of an orange speck must not start one).
   if (!result.measurement && options_.single_camera_fallback && (n == 1 || predicted)) {
     result.measurement = SingleView(candidates, predicted, predicted_covariance, &used);
   }
+  const TimeNs t2 = clock_ ? clock_() : 0;
+  if (!confirming || tracker_.tracking()) {
+    result.state =
+        tracker_.Step(t, confirming && !tracker_.tracking() ? std::nullopt : result.measurement);
+  }
+  if (confirming) {
+    const bool took = result.state && result.state->measured;
+    // A tracklet confirmed elsewhere replaces a track that did not take this time-stamp's
+    // measurement (the ball was hit, or the track had followed something else).
+    if (confirmed && !took) {
+      used.clear();
+      AdoptTracklet(*confirmed, &result, &used, candidates);
+    } else if (!took) {
+      result.tentative = result.measurement.has_value();
+      used.clear();
+    }
+  }
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);
   }
-  const TimeNs t2 = clock_ ? clock_() : 0;
-  result.state = tracker_.Step(t, result.measurement);
   if (clock_) {
     const TimeNs t3 = clock_();
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
@@ -218,44 +294,66 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   return result;
 }
 
-bool FrameSetTracker::IsStatic(int camera, const Eigen::Vector2d& pixel) {
+void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result,
+                                    std::vector<std::pair<int, int>>* used,
+                                    const std::vector<std::vector<Detection>>& candidates) {
+  tracker_ = BallTracker(tracker_options_);
+  std::optional<TrackedState> last;
+  for (const TrackletPoint& p : tracklet.points) {
+    last = tracker_.Step(p.t, p.measurement);
+    if (&p == &tracklet.points.back()) break;
+    if (last && last->measured) {
+      result->revisions.push_back({p.t, p.measurement, *last, p.detections});
+    }
+  }
+  const TrackletPoint& now = tracklet.points.back();
+  result->state = last;
+  result->measurement = now.measurement;
+  result->tentative = false;
+  // The last point's detections are this time-stamp's: back to (camera, candidate).
+  for (int index : now.detections) {
+    for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
+      const int size = static_cast<int>(candidates[c].size());
+      if (index < size) {
+        used->emplace_back(c, index);
+        break;
+      }
+      index -= size;
+    }
+  }
+}
+
+int FrameSetTracker::SpotCount(int camera, const Eigen::Vector2d& pixel) {
   for (StaticSpot& spot : static_spots_[camera]) {
     if ((spot.pixel - pixel).norm() <= options_.static_px) {
       if (!spot.seen) ++spot.count;
       spot.seen = true;
-      return spot.count >= options_.static_frames;
+      return spot.count;
     }
   }
   static_spots_[camera].push_back({pixel, 1, true});
-  return false;
+  return 1;
 }
 
-void FrameSetTracker::AgeStaticSpots(int camera) {
+void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
   auto& spots = static_spots_[camera];
+  // Only where the camera looked: a lamp outside the window is not gone.
+  const bool whole = search.roi.empty() || search.fell_back;
+  const segment::Roi& roi = search.roi;
   for (StaticSpot& spot : spots) {
-    if (!spot.seen) spot.count -= 3;  // gone for a moment: forgotten fast
+    const bool looked =
+        search.present && (whole || (spot.pixel.x() >= roi.x0 && spot.pixel.x() < roi.x1 &&
+                                     spot.pixel.y() >= roi.y0 && spot.pixel.y() < roi.y1));
+    if (!spot.seen && looked) spot.count -= 3;  // gone for a moment: forgotten fast
     spot.seen = false;
   }
   std::erase_if(spots, [](const StaticSpot& s) { return s.count <= 0; });
 }
 
-std::optional<Measurement> FrameSetTracker::Associate(
-    const std::vector<std::vector<Detection>>& candidates,
-    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
+std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
+    const std::vector<std::vector<Detection>>& candidates) const {
   const int n = rig_.size();
-  struct Hypothesis {
-    std::vector<std::pair<int, int>> members;  // (camera, candidate)
-    PointEstimate estimate;
-    double prediction_distance = 0.0;
-    double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
-  };
-  std::optional<Hypothesis> best;
-  const auto better = [&](const Hypothesis& a, const Hypothesis& b) {
-    if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
-    if (predicted) return a.prediction_distance < b.prediction_distance;
-    return a.size_misfit + 0.05 * a.estimate.mean_reprojection_px <
-           b.size_misfit + 0.05 * b.estimate.mean_reprojection_px;
-  };
+  std::vector<Hypothesis> out;
   std::vector<Observation> observations;
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
@@ -315,24 +413,46 @@ std::optional<Measurement> FrameSetTracker::Associate(
             h.size_misfit += std::abs(std::log(ratio));
           }
           if (!sized) continue;
-          // Distance to the prediction ranks hypotheses of as many views; it never rejects one
-          // (a wrong track must not hide the ball: the filter's gate and restarts judge).
-          if (predicted) h.prediction_distance = (estimate->point - *predicted).norm();
-          if (!best || better(h, *best)) best = h;
+          out.push_back(std::move(h));
         }
       }
     }
   }
-  if (!best) return std::nullopt;
-  *used = best->members;
+  const auto score = [](const Hypothesis& h) {
+    return h.size_misfit + 0.05 * h.estimate.mean_reprojection_px;
+  };
+  std::stable_sort(out.begin(), out.end(), [&](const Hypothesis& a, const Hypothesis& b) {
+    if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
+    return score(a) < score(b);
+  });
+  return out;
+}
+
+const FrameSetTracker::Hypothesis* FrameSetTracker::Pick(
+    const std::vector<Hypothesis>& hypotheses, const std::optional<Eigen::Vector3d>& predicted) {
+  if (hypotheses.empty()) return nullptr;
+  if (!predicted) return &hypotheses.front();
+  // Distance to the prediction ranks hypotheses of as many views; it never rejects one (a wrong
+  // track must not hide the ball: the filter's gate and the initiator judge).
+  const Hypothesis* best = &hypotheses.front();
+  for (const Hypothesis& h : hypotheses) {
+    if (h.members.size() < best->members.size()) break;
+    if ((h.estimate.point - *predicted).norm() < (best->estimate.point - *predicted).norm()) {
+      best = &h;
+    }
+  }
+  return best;
+}
+
+Measurement FrameSetTracker::ToMeasurement(const Hypothesis& h) const {
   Measurement m;
-  m.position = best->estimate.point;
-  m.cameras = static_cast<int>(best->members.size());
-  m.residual_px = best->estimate.mean_reprojection_px;
+  m.position = h.estimate.point;
+  m.cameras = static_cast<int>(h.members.size());
+  m.residual_px = h.estimate.mean_reprojection_px;
   // Isotropic covariance from the centroid noise at the views' mean depth (a fair bound for
   // cameras that see the ball from well-separated directions).
   double depth = 0.0, focal = 0.0;
-  for (const auto& [c, k] : best->members) {
+  for (const auto& [c, k] : h.members) {
     depth += (rig_.cameras[c].cam_from_world * m.position).z();
     focal += rig_.cameras[c].fx;
   }

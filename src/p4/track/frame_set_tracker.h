@@ -18,6 +18,7 @@
 #include "p4/core/image.h"
 #include "p4/core/time.h"
 #include "p4/geometry/rig.h"
+#include "p4/geometry/triangulation.h"
 #include "p4/segment/background_model.h"
 #include "p4/segment/ball_colour.h"
 #include "p4/segment/blob_finder.h"
@@ -25,6 +26,7 @@
 #include "p4/segment/foreground_finder.h"
 #include "p4/track/ball_tracker.h"
 #include "p4/track/camera_pool.h"
+#include "p4/track/track_initiator.h"
 
 namespace p4::track {
 
@@ -79,6 +81,12 @@ struct FrameSetOptions {
   // results either way; pays off for several large images searched whole.
   int threads = 1;
   TrackerOptions tracker;
+  // With two cameras or more, a new track starts only from candidates that fly (TrackInitiator):
+  // until then a time-stamp's measurement is tentative, and the time-stamps of the tracklet that
+  // confirms it are revised (FrameSetResult::revisions; ResultHold applies them). Off: the
+  // filter starts from any two measurements that agree (the paper's way, and one camera's).
+  bool confirm_tracks = true;
+  TrackInitiatorOptions initiator;
 
   bool IsValid(std::string* error) const;
 };
@@ -105,11 +113,23 @@ struct StageTimes {
   TimeNs filter = 0;     // the Kalman filter's step
 };
 
+// An earlier time-stamp, now known: a point of the tracklet that confirmed a track.
+struct Revision {
+  TimeNs t = 0;
+  Measurement measurement;
+  TrackedState state;
+  std::vector<int> accepted;  // indices into that time-stamp's detections
+};
+
 struct FrameSetResult {
   TimeNs t = 0;
   StageTimes stages;
   std::optional<Measurement> measurement;
   std::optional<TrackedState> state;
+  // The measurement is this time-stamp's best candidate but no confirmed track has taken it (yet):
+  // a later result's revisions may; one still tentative when it is written is not the ball.
+  bool tentative = false;
+  std::vector<Revision> revisions;  // of earlier time-stamps, oldest first
   std::vector<Detection> detections;
   std::vector<CameraSearch> searches;  // one per camera of the rig
 };
@@ -134,9 +154,23 @@ class FrameSetTracker {
   // that camera's state (so cameras may run in parallel).
   void SearchCamera(int c, const ImageView& image, const std::optional<Eigen::Vector3d>& predicted,
                     CameraSearch* search, std::vector<Detection>* out);
-  std::optional<Measurement> Associate(const std::vector<std::vector<Detection>>& candidates,
-                                       const std::optional<Eigen::Vector3d>& predicted,
-                                       std::vector<std::pair<int, int>>* used) const;
+  // A 3D candidate: detections of several views that agree (epipolar, reprojection, size).
+  struct Hypothesis {
+    std::vector<std::pair<int, int>> members;  // (camera, candidate)
+    PointEstimate estimate;
+    double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
+  };
+  // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
+  std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
+  // The hypothesis nearest the prediction among those of most views (the best without one).
+  static const Hypothesis* Pick(const std::vector<Hypothesis>& hypotheses,
+                                const std::optional<Eigen::Vector3d>& predicted);
+  Measurement ToMeasurement(const Hypothesis& h) const;
+  // A confirmed tracklet becomes the track: the filter replays its points; all but the last
+  // become revisions of their time-stamps.
+  void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result,
+                     std::vector<std::pair<int, int>>* used,
+                     const std::vector<std::vector<Detection>>& candidates);
   std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         const Eigen::Matrix3d& predicted_covariance,
@@ -151,8 +185,9 @@ class FrameSetTracker {
     int count = 0;
     bool seen = false;
   };
-  bool IsStatic(int camera, const Eigen::Vector2d& pixel);
-  void AgeStaticSpots(int camera);
+  // Sets in a row with a region within static_px of pixel, this one included.
+  int SpotCount(int camera, const Eigen::Vector2d& pixel);
+  void AgeStaticSpots(int camera, const CameraSearch& search);
 
   std::vector<segment::BlobFinder> finders_;
   std::vector<segment::BackgroundModel> backgrounds_;
@@ -163,7 +198,9 @@ class FrameSetTracker {
   std::vector<std::vector<StaticSpot>> static_spots_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;
+  TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
   BallTracker tracker_;
+  TrackInitiator initiator_;
   std::function<TimeNs()> clock_;
 };
 

@@ -1,0 +1,143 @@
+#include "p4/track/track_initiator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace p4::track {
+
+bool TrackInitiatorOptions::IsValid(std::string* error) const {
+  if (confirm_points < 2 || !(min_travel >= 0.0) || !(gate > 0.0) || !(gate_sigmas >= 0.0) ||
+      !(max_gap_s > 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 ||
+      max_missed < 0) {
+    if (error) {
+      *error =
+          "track initiator: need confirm_points >= 2, positive gate, gap, speed and tracklets, "
+          "and a span longer than the gap";
+    }
+    return false;
+  }
+  return true;
+}
+
+TrackInitiator::TrackInitiator(const TrackInitiatorOptions& options) : options_(options) {}
+
+namespace {
+
+double Sigma(const Measurement& m) { return std::sqrt(std::max(0.0, m.covariance.trace() / 3.0)); }
+
+}  // namespace
+
+std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& tracklet,
+                                                           TimeNs t) const {
+  const TrackletPoint& last = tracklet.points.back();
+  const double dt = ToSeconds(t - last.t);
+  const Eigen::Vector3d& p1 = last.measurement.position;
+  if (tracklet.points.size() == 1) return {p1, options_.gate + options_.max_speed * dt};
+  const TrackletPoint& before = tracklet.points[tracklet.points.size() - 2];
+  const double dt01 = ToSeconds(last.t - before.t);
+  const Eigen::Vector3d mean_v = (p1 - before.measurement.position) / dt01;
+  // The mean velocity is the one at the middle of the interval: carry it to the last point.
+  const auto accel = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d {
+    return Eigen::Vector3d(0.0, 0.0, -options_.gravity) - options_.drag_per_mass * v.norm() * v;
+  };
+  const Eigen::Vector3d v1 = mean_v + accel(mean_v) * (0.5 * dt01);
+  const Eigen::Vector3d predicted = p1 + v1 * dt + 0.5 * accel(v1) * dt * dt;
+  // The velocity is as good as the two points' difference: its error grows with dt / dt01.
+  const double sigma = std::max(Sigma(last.measurement), Sigma(before.measurement));
+  const double radius = options_.gate + options_.gate_sigmas * sigma * (1.0 + 1.5 * dt / dt01);
+  return {predicted, radius};
+}
+
+bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
+  if (static_cast<int>(tracklet.points.size()) < options_.confirm_points) return false;
+  const Eigen::Vector3d travel =
+      tracklet.points.back().measurement.position - tracklet.points.front().measurement.position;
+  return travel.norm() >= options_.min_travel;
+}
+
+std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletPoint> candidates) {
+  // Tracklets that waited too long end; points too old slide out.
+  const TimeNs max_gap = FromSeconds(options_.max_gap_s);
+  const TimeNs max_span = FromSeconds(options_.max_span_s);
+  const int64_t stamp = ++stamps_;
+  std::erase_if(tracklets_, [&](const Tracklet& k) {
+    return t - k.points.back().t > max_gap ||
+           stamp - k.points.back().stamp > options_.max_missed + 1;
+  });
+  for (Tracklet& k : tracklets_) {
+    const auto old = std::find_if(k.points.begin(), k.points.end(),
+                                  [&](const TrackletPoint& p) { return t - p.t <= max_span; });
+    k.points.erase(k.points.begin(), old);
+  }
+  std::erase_if(tracklets_, [](const Tracklet& k) { return k.points.empty(); });
+
+  // Every (tracklet, candidate) pair within the gate; longer tracklets choose first, then the
+  // nearest pairs. A candidate extends one tracklet at most.
+  struct Pair {
+    int tracklet, candidate, rank;
+    double distance;
+  };
+  std::vector<Pair> pairs;
+  for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
+    const auto [predicted, radius] = Predict(tracklets_[i], t);
+    const int rank = std::min<int>(3, static_cast<int>(tracklets_[i].points.size()));
+    for (int j = 0; j < static_cast<int>(candidates.size()); ++j) {
+      const double d = (candidates[j].measurement.position - predicted).norm();
+      if (d <= radius) pairs.push_back({i, j, rank, d / radius});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return std::tie(b.rank, a.distance) < std::tie(a.rank, b.distance);
+  });
+  std::vector<bool> tracklet_taken(tracklets_.size(), false);
+  std::vector<int> extended_rank(candidates.size(), 0);  // of the tracklet a candidate extended
+  std::vector<Tracklet> grown;
+  for (const Pair& p : pairs) {
+    if (tracklet_taken[p.tracklet] || extended_rank[p.candidate] > 0) continue;
+    tracklet_taken[p.tracklet] = true;
+    extended_rank[p.candidate] = p.rank;
+    tracklets_[p.tracklet].points.push_back(candidates[p.candidate]);
+    tracklets_[p.tracklet].points.back().stamp = stamp;
+  }
+  // Every candidate that did not extend a tracklet of two points or more also starts one of its
+  // own (a stray that took the ball's first point must not cost the ball its tracklet).
+  for (int j = 0; j < static_cast<int>(candidates.size()); ++j) {
+    if (extended_rank[j] < 2) {
+      grown.push_back(Tracklet{{candidates[j]}});
+      grown.back().points.back().stamp = stamp;
+    }
+  }
+  // Tracklets not extended at t keep waiting (up to max_gap_s); the new ones join the list.
+  for (Tracklet& k : grown) tracklets_.push_back(std::move(k));
+  if (static_cast<int>(tracklets_.size()) > options_.max_tracklets) {
+    // Keep the longest.
+    std::stable_sort(
+        tracklets_.begin(), tracklets_.end(),
+        [](const Tracklet& a, const Tracklet& b) { return a.points.size() > b.points.size(); });
+    tracklets_.resize(options_.max_tracklets);
+  }
+  // The longest confirmed tracklet that ends at t.
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
+    const Tracklet& k = tracklets_[i];
+    if (k.points.back().t != t || !Confirmed(k)) continue;
+    if (best < 0 || k.points.size() > tracklets_[best].points.size()) best = i;
+  }
+  if (best < 0) return std::nullopt;
+  Tracklet confirmed = std::move(tracklets_[best]);
+  tracklets_.erase(tracklets_.begin() + best);
+  // Tracklets that share a point with it are the same ball, a step behind: they go with it.
+  const auto shares = [&](const Tracklet& k) {
+    for (const TrackletPoint& p : k.points) {
+      for (const TrackletPoint& q : confirmed.points) {
+        if (p.t == q.t && p.detections == q.detections) return true;
+      }
+    }
+    return false;
+  };
+  std::erase_if(tracklets_, shares);
+  return confirmed;
+}
+
+}  // namespace p4::track

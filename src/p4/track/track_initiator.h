@@ -1,0 +1,79 @@
+// Which 3D candidates are the ball in play: new tracks are confirmed by the ball's motion
+// (beyond the paper, whose §3.3 starts the filter from the first measurement).
+//
+// A lamp, a letter of a banner, a ball-coloured shoe or a spare ball on the floor can agree
+// across views (epipolar, size) as well as the ball does; what none of them does is fly. Every
+// time-stamp's candidates (all of them, not only the best) extend short chains, tracklets: a
+// candidate extends a tracklet when it lies where the tracklet's last two points send the ball
+// (gravity and drag, dt from the time-stamps), within a gate of model error plus the
+// measurements' own noise. A tracklet is confirmed, and may start the filter's track, once it
+// has confirm_points points in a row and has travelled min_travel: the ball in play moves, the
+// hall does not. Points older than max_span_s slide out (a static spot never confirms however
+// long it stays); a tracklet not extended for max_gap_s ends.
+//
+// World frame, metres, seconds (time-stamps in ns from the caller). Pure.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "p4/core/time.h"
+#include "p4/track/ball_tracker.h"
+
+namespace p4::track {
+
+struct TrackInitiatorOptions {
+  int confirm_points = 4;    // points in a row that confirm a tracklet
+  double min_travel = 0.10;  // m between its first and last point (2.5 ball diameters)
+  double gate = 0.03;        // m of model error (spin, a bounce's start) in the prediction...
+  double gate_sigmas = 4.0;  // ...plus this many sigmas of the measurements and the velocity
+  double max_gap_s = 0.07;   // a tracklet not extended this long ends...
+  int max_missed = 1;        // ...or for more time-stamps than this (the ball is seen in almost
+                             // every frame; a flicker of the hall is not)
+  double max_span_s = 0.25;  // points older than this slide out
+  double max_speed = 45.0;   // m/s; a second point farther than this from the first is not it
+  double gravity = 9.81;     // m/s^2
+  double drag_per_mass = 0.1407;  // 1/m, as the filter's
+  int max_tracklets = 64;         // the youngest are dropped beyond this
+
+  bool IsValid(std::string* error) const;
+};
+
+// One 3D candidate of one time-stamp: the measurement and the detections it was made of (the
+// caller's indices, handed back when the tracklet is confirmed).
+struct TrackletPoint {
+  TimeNs t = 0;
+  Measurement measurement;
+  std::vector<int> detections;
+  int64_t stamp = 0;  // set by the initiator: which of its time-stamps
+};
+
+struct Tracklet {
+  std::vector<TrackletPoint> points;  // oldest first
+};
+
+class TrackInitiator {
+ public:
+  explicit TrackInitiator(const TrackInitiatorOptions& options = {});
+
+  // One time-stamp's candidates (strictly increasing t; no two share a detection). Returns the
+  // tracklet confirmed at t, if any (the longest when several); it is handed over and no longer
+  // kept. Its last point is one of `candidates`.
+  std::optional<Tracklet> Push(TimeNs t, std::span<const TrackletPoint> candidates);
+
+  void Clear() { tracklets_.clear(); }
+  int size() const { return static_cast<int>(tracklets_.size()); }
+
+ private:
+  // Where the tracklet sends the ball at t and how far from it a point may lie (m).
+  std::pair<Eigen::Vector3d, double> Predict(const Tracklet& tracklet, TimeNs t) const;
+  bool Confirmed(const Tracklet& tracklet) const;
+
+  TrackInitiatorOptions options_;
+  std::vector<Tracklet> tracklets_;
+  int64_t stamps_ = 0;  // time-stamps pushed
+};
+
+}  // namespace p4::track

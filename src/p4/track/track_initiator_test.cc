@@ -1,0 +1,161 @@
+// The track initiator and the result hold: what flies becomes a track, what stays or flickers
+// does not, and the rows before the confirmation are revised before they are written.
+#include "p4/track/track_initiator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "p4/track/result_hold.h"
+
+namespace p4::track {
+namespace {
+
+constexpr double kRate = 120.0;
+
+TrackletPoint Point(int k, const Eigen::Vector3d& p, int detection) {
+  TrackletPoint out;
+  out.t = FromSeconds(k / kRate);
+  out.measurement.position = p;
+  out.measurement.covariance = 0.002 * 0.002 * Eigen::Matrix3d::Identity();
+  out.measurement.cameras = 2;
+  out.detections = {detection};
+  return out;
+}
+
+// A drive at 8 m/s, rising and falling, measured with 2 mm of noise.
+Eigen::Vector3d Flight(int k, std::mt19937* rng) {
+  std::normal_distribution<double> noise(0.0, 0.002);
+  const double t = k / kRate;
+  return Eigen::Vector3d(-1.2 + 8.0 * t + noise(*rng), 0.1 + noise(*rng),
+                         0.2 + 1.5 * t - 4.9 * t * t + noise(*rng));
+}
+
+TEST(TrackInitiator, TheFlyingBallIsConfirmedAmongALampAndAFlicker) {
+  std::mt19937 rng(3);
+  TrackInitiator initiator;
+  const Eigen::Vector3d lamp(2.0, -0.5, 0.05);
+  std::optional<Tracklet> confirmed;
+  int confirmed_at = -1;
+  for (int k = 0; k < 40 && !confirmed; ++k) {
+    std::vector<TrackletPoint> candidates = {Point(k, lamp, 0)};
+    if (k >= 10) candidates.push_back(Point(k, Flight(k - 10, &rng), 1));
+    // A speck that comes and goes at random places.
+    if (k % 3 == 0) candidates.push_back(Point(k, Eigen::Vector3d(0.3 * (k % 7), 1.0, 0.4), 2));
+    confirmed = initiator.Push(FromSeconds(k / kRate), candidates);
+    if (confirmed) confirmed_at = k;
+  }
+  ASSERT_TRUE(confirmed.has_value());
+  // 8 m/s at 120 sets per second: 4 points travel 20 cm, so the fourth point confirms.
+  EXPECT_EQ(confirmed_at, 13);
+  ASSERT_EQ(confirmed->points.size(), 4u);
+  for (const auto& p : confirmed->points) EXPECT_EQ(p.detections, std::vector<int>{1});
+}
+
+TEST(TrackInitiator, WhatStaysOrFlickersIsNeverConfirmed) {
+  TrackInitiator initiator;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  for (int k = 0; k < 200; ++k) {
+    std::vector<TrackletPoint> candidates;
+    // A lamp measured with noise, and a shoe seen in one set of three, moving slowly.
+    candidates.push_back(
+        Point(k, Eigen::Vector3d(1.0 + noise(rng), 0.0 + noise(rng), 0.5 + noise(rng)), 0));
+    if (k % 3 == 0) candidates.push_back(Point(k, Eigen::Vector3d(0.01 * k, 1.5, -0.7), 1));
+    ASSERT_FALSE(initiator.Push(FromSeconds(k / kRate), candidates).has_value()) << k;
+  }
+}
+
+TEST(TrackInitiator, ABounceBreaksTheChainAndTheFlightAfterItIsConfirmedAgain) {
+  TrackInitiator initiator;
+  // Down at 3 m/s onto the table at k = 0, up at 2.5 m/s after it; 4 m/s along x.
+  const auto ball = [](int k) {
+    const double t = k / kRate;
+    return Eigen::Vector3d(4.0 * t, 0.0, 0.02 + (k < 0 ? -3.0 * t : 2.5 * t) - 4.9 * t * t);
+  };
+  std::vector<std::pair<int, int>> confirmed;  // (first, last) set of each confirmed tracklet
+  for (int k = -8; k < 8; ++k) {
+    const std::vector<TrackletPoint> candidates = {Point(k + 8, ball(k), 0)};
+    if (const auto c = initiator.Push(FromSeconds((k + 8) / kRate), candidates)) {
+      confirmed.emplace_back(
+          static_cast<int>(std::lround(ToSeconds(c->points.front().t) * kRate)) - 8, k);
+    }
+  }
+  // The ball keeps being confirmed while it flies (the tracker takes no notice then); no
+  // tracklet spans the bounce, and one after it is confirmed within 4 points.
+  ASSERT_GE(confirmed.size(), 2u);
+  EXPECT_EQ(confirmed.front(), std::make_pair(-8, -5));
+  bool after = false;
+  for (const auto& [first, last] : confirmed) {
+    EXPECT_TRUE(last < 0 || first >= 0) << first << ".." << last;
+    if (first >= 0 && last <= 4) after = true;
+  }
+  EXPECT_TRUE(after);
+}
+
+TEST(TrackInitiator, ValidatesItsOptions) {
+  TrackInitiatorOptions o;
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why));
+  o.confirm_points = 1;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = {};
+  o.max_span_s = o.max_gap_s;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("span"), std::string::npos);
+}
+
+FrameSetResult Result(int k, bool tentative) {
+  FrameSetResult r;
+  r.t = FromSeconds(k / kRate);
+  if (tentative) {
+    r.measurement = Measurement{};
+    r.tentative = true;
+  }
+  r.detections = {Detection{0, {1.0, 2.0}, 5.0, 20, false},
+                  Detection{1, {3.0, 4.0}, 5.0, 20, false}};
+  return r;
+}
+
+TEST(ResultHold, RevisionsReachHeldRowsAndTentativeOnesLoseTheirMeasurement) {
+  ResultHold hold(0.25);
+  std::vector<FrameSetResult> out;
+  const auto push = [&](FrameSetResult r) {
+    for (auto& f : hold.Push(std::move(r))) out.push_back(std::move(f));
+  };
+  // 60 tentative sets; the 40th confirms 37-39.
+  for (int k = 0; k < 60; ++k) {
+    FrameSetResult r = Result(k, true);
+    if (k == 40) {
+      r.tentative = false;
+      for (int i = 37; i < 40; ++i) {
+        Revision rev;
+        rev.t = FromSeconds(i / kRate);
+        rev.measurement.cameras = 2;
+        rev.state.measured = true;
+        rev.accepted = {1};
+        r.revisions.push_back(rev);
+      }
+    }
+    push(std::move(r));
+  }
+  // 0.25 s at 120 per second: 30 sets held, the rest out, in order.
+  ASSERT_EQ(out.size(), 29u);
+  for (auto& f : hold.Flush()) out.push_back(std::move(f));
+  ASSERT_EQ(out.size(), 60u);
+  EXPECT_EQ(hold.revised(), 3);
+  EXPECT_EQ(hold.missed(), 0);
+  for (int k = 0; k < 60; ++k) {
+    const FrameSetResult& r = out[k];
+    EXPECT_EQ(r.t, FromSeconds(k / kRate));
+    EXPECT_FALSE(r.tentative);
+    const bool revised = k >= 37 && k <= 40;
+    EXPECT_EQ(r.measurement.has_value(), revised) << k;
+    EXPECT_EQ(r.state.has_value(), revised && k < 40) << k;
+    EXPECT_EQ(r.detections[1].accepted, revised && k < 40) << k;
+  }
+}
+
+}  // namespace
+}  // namespace p4::track
