@@ -34,6 +34,7 @@ struct SuiteArgs {
   int scenes = 4;
   int first = 1;
   bool keep = false;
+  std::string ball = "hint";
   std::vector<std::string> track_args;
 };
 
@@ -116,8 +117,13 @@ int Run(const SuiteArgs& a) {
     nlohmann::ordered_json row = {{"scene", name}, {"axes", scene.ToJson()}};
     std::vector<std::string> simulate = scene.SimulateArgs();
     simulate.insert(simulate.end(), {"--out", sim});
-    std::vector<std::string> track = {"track", "--rig",  sim + "/rig.yaml", "--out",
-                                      run,     "--ball", scene.TrackBall()};
+    std::vector<std::string> track = {"track",
+                                      "--rig",
+                                      sim + "/rig.yaml",
+                                      "--out",
+                                      run,
+                                      "--ball",
+                                      a.ball == "auto" ? "auto" : scene.TrackBall()};
     track.insert(track.end(), a.track_args.begin(), a.track_args.end());
     for (int c = 0; c < scene.cameras; ++c) track.push_back(fmt::format("{}/cam{}.mp4", sim, c));
     std::string failed;
@@ -258,6 +264,11 @@ std::function<int()> AddEvalSuiteCommand(CLI::App& app) {
       ->check(CLI::Range(1, 499))
       ->capture_default_str();
   cmd->add_flag("--keep", args->keep, "Keep the rendered videos (deleted after each scene)");
+  cmd->add_option("--ball", args->ball,
+                  "hint: track with the scene's ball colour named (--ball orange|white|yellow); "
+                  "auto: with --ball auto (the colour learnt from the scene)")
+      ->check(CLI::IsMember({"hint", "auto"}))
+      ->capture_default_str();
   cmd->add_option("--track-args", args->track_args,
                   "Extra arguments for `p4track track`, e.g. --track-args=--no-roi")
       ->allow_extra_args(false);

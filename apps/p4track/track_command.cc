@@ -10,6 +10,7 @@
 #include "p4/io/color_class_file.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
+#include "p4/pipeline/learn_colour.h"
 #include "p4/pipeline/track_run.h"
 #include "p4/server/live_hub.h"
 #include "web_ui.h"
@@ -35,13 +36,19 @@ struct TrackArgs {
 
 int Run(const TrackArgs& a) {
   const Rig rig = ReadRig(a.rig);
-  const segment::ColorClassSet classes =
-      !a.classes.empty() ? ReadColorClasses(a.classes)
-                         : (a.ball == "white"    ? segment::DefaultWhiteBall()
-                            : a.ball == "yellow" ? segment::DefaultYellowBall()
-                                                 : segment::DefaultOrangeBall());
+  const bool learn = a.classes.empty() && a.ball == "auto";
+  segment::ColorClassSet classes = !a.classes.empty()
+                                       ? ReadColorClasses(a.classes)
+                                       : (a.ball == "white"    ? segment::DefaultWhiteBall()
+                                          : a.ball == "yellow" ? segment::DefaultYellowBall()
+                                                               : segment::DefaultOrangeBall());
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
+    if (learn && VideoReader::IsLive(s)) {
+      throw Error(s + ": --ball auto learns the ball's colour from recordings (it reads their " +
+                  "first seconds twice); record a rally and learn from it (its folder gets " +
+                  "ball_classes.yaml, for --classes), or give --ball orange|white|yellow");
+    }
   }
   track::FrameSetOptions options;
   options.use_roi = !a.no_roi;
@@ -57,6 +64,24 @@ int Run(const TrackArgs& a) {
   options.epipolar_px = a.epipolar_px;
   options.threads = a.threads;
   segment::BallColour::Named(a.ball, &options.ball_colour);
+  if (learn) {
+    LearnColourOptions learning;
+    learning.tracking = options;
+    spdlog::info("learning the ball's colour from the sources' first {:.0f} s",
+                 learning.max_seconds);
+    const LearnColourResult learnt = LearnBallColour(rig, a.sources, learning);
+    classes = learnt.colour.classes;
+    options.ball_colour = learnt.colour.ball;
+    std::filesystem::create_directories(a.out);
+    const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
+    WriteColorClasses(classes, saved);
+    const segment::Yuv& lit = learnt.colour.ball.lit;
+    spdlog::info(
+        "learnt the ball's colour from {} views in {} tracks ({:.1f} s): lit YUV {:.0f} {:.0f} "
+        "{:.0f}, {} classes, saved to {} (reuse with --classes)",
+        learnt.views, learnt.tracks, learnt.seconds, lit.y, lit.u, lit.v, classes.classes.size(),
+        saved);
+  }
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   GameOptions game;
   game.enabled = !a.no_referee;
@@ -117,8 +142,10 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--ball", args->ball, "Ball colour when no --classes")
-      ->check(CLI::IsMember({"orange", "white", "yellow"}))
+  cmd->add_option("--ball", args->ball,
+                  "Ball colour when no --classes; auto: learnt from the recordings' first "
+                  "seconds (saved as ball_classes.yaml in --out)")
+      ->check(CLI::IsMember({"orange", "white", "yellow", "auto"}))
       ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");
   cmd->add_flag("--no-confirm", args->no_confirm,

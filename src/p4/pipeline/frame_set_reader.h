@@ -47,7 +47,7 @@ class FrameSetReader {
     bool consumed = true;
     bool ended = false;
   };
-  bool ReadAll();   // the next frame of every source whose last one was used
+  bool ReadAll();     // the next frame of every source whose last one was used
   bool StartAgain();  // loop: reopens every file, times shifted past the last one
 
   std::vector<Source> sources_;

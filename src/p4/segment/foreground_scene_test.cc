@@ -9,6 +9,8 @@
 
 #include "p4/core/table.h"
 #include "p4/segment/background_model.h"
+#include "p4/segment/blob_finder.h"
+#include "p4/segment/colour_learning.h"
 #include "p4/segment/foreground_finder.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/look.h"
@@ -296,6 +298,91 @@ TEST(ForegroundScene, ABallHeldStillIsNotAbsorbedAtOnce) {
   std::printf("coverage of a still ball: %.2f at first, %.2f after a second\n", first, last);
   EXPECT_GT(first, 0.9);
   EXPECT_GT(last, 0.7);
+}
+
+}  // namespace
+}  // namespace p4::segment
+
+namespace p4::segment {
+namespace {
+
+// The share of a frame's pixels (a 4-pixel grid) that a colour-class set takes.
+double TakenShare(const I420Image& frame, const ColorClassSet& classes) {
+  const ColorLut lut = classes.BuildLut();
+  const uint32_t mask = classes.MaskOf("ball");
+  int taken = 0, all = 0;
+  for (int y = 0; y < frame.height(); y += 2) {
+    for (int x = 0; x < frame.width(); x += 2) {
+      const uint8_t yy = frame.y()[y * frame.width() + x];
+      const uint8_t u = frame.u()[(y / 2) * frame.chroma_width() + x / 2];
+      const uint8_t v = frame.v()[(y / 2) * frame.chroma_width() + x / 2];
+      taken += (lut.Classify(yy, u, v) & mask) != 0;
+      ++all;
+    }
+  }
+  return static_cast<double>(taken) / all;
+}
+
+// --ball auto's learning (colour_learning.h) from a few frames: a yellow ball over a wood floor
+// whose colour the default yellow classes take too. Eight views of the ball's core, where it
+// differs from the learnt background, give classes that take the ball in new frames and almost
+// nothing of the hall.
+TEST(ForegroundScene, ColoursLearnedFromAFewFrames) {
+  sim::Look look = sim::ClubLook();
+  look.ball = sim::BallColour("yellow");
+  look.floor = {0.57f, 0.22f, 0.12f};  // wood, near the yellow's shaded side
+  look.light = Eigen::Vector3d(0.1, 0.1, 1.0).normalized();
+  look.ball_ambient = 0.5;  // lamps above: a bright top and a dark bottom
+  Scene scene(look, 1280, 720);
+  scene.Learn(40);
+  ColourLearningOptions learning;
+  learning.min_samples = 40;  // a ball of 8-10 px: its core is a dozen pixels a view
+  const auto ball_at = [](int k) {
+    return Eigen::Vector3d(-1.1 + 0.27 * k, 0.4 * std::cos(k), 0.15 + 0.04 * (k % 4));
+  };
+  ColourSamples samples;
+  for (int k = 0; k < 8; ++k) {
+    const std::vector<Eigen::Vector3d> at = {ball_at(k)};
+    scene.Render(at, 1.0 + k / 60.0, 900 + k);
+    const Silhouette exact = Exact(scene.camera(), at);
+    samples.AddDisc(scene.frame().View(), exact.centre, 2.0 * std::sqrt(exact.area / M_PI),
+                    learning, &scene.background());
+  }
+  LearnedColour learnt;
+  std::string why;
+  ASSERT_TRUE(samples.Learn(learning, &learnt, &why)) << why;
+  // The lit colour is a yellow: U well below neutral, V a little above it.
+  EXPECT_LT(learnt.ball.lit.u, 100.0f);
+  EXPECT_GT(learnt.ball.lit.v, 130.0f);
+  // Of a frame without the ball, the learnt classes take almost nothing; the default yellow
+  // classes take the floor.
+  scene.Render({}, 2.0, 950);
+  const double learnt_share = TakenShare(scene.frame(), learnt.classes);
+  const double default_share = TakenShare(scene.frame(), DefaultYellowBall());
+  std::printf("hall taken: learnt %.4f, default yellow %.4f\n", learnt_share, default_share);
+  EXPECT_LT(learnt_share, 0.002);
+  EXPECT_GT(default_share, 5.0 * learnt_share);
+  // New frames: the learnt classes find the ball where it is (its colour region's centre within
+  // 2 px of the exact one, however it is shaded) in 6 of 6 places.
+  const ColorLut lut = learnt.classes.BuildLut();
+  SegmentOptions options;
+  options.mask = learnt.classes.MaskOf("ball");
+  BlobFinder finder;
+  std::vector<Region> regions;
+  int found = 0;
+  for (int k = 0; k < 6; ++k) {
+    const std::vector<Eigen::Vector3d> at = {ball_at(k) + Eigen::Vector3d(0.11, -0.2, 0.05)};
+    scene.Render(at, 3.0 + k / 60.0, 960 + k);
+    const Silhouette exact = Exact(scene.camera(), at);
+    finder.Find(scene.frame().View(), lut, {}, options, &regions);
+    for (const Region& r : regions) {
+      if ((Eigen::Vector2d(r.cx, r.cy) - exact.centre).norm() < 2.0) {
+        ++found;
+        break;
+      }
+    }
+  }
+  EXPECT_EQ(found, 6);
 }
 
 }  // namespace

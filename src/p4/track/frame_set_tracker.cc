@@ -273,15 +273,20 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   }
   if (confirming) {
     const bool took = result.state && result.state->measured;
-    // A tracklet confirmed elsewhere replaces a track that did not take this time-stamp's
-    // measurement (the ball was hit, or the track had followed something else).
-    if (confirmed && !took) {
+    // A confirmed tracklet replaces a track that did not take this time-stamp's measurement, or
+    // did not take the tracklet's earlier points (the ball was hit and the filter coasted, then
+    // its grown gate let the ball in again; or the track had followed something else): the
+    // filter replayed from the tracklet knows the new flight, and its points become rows.
+    const bool missed_points = confirmed && confirmed->points.size() >= 2 &&
+                               confirmed->points[confirmed->points.size() - 2].t > last_taken_t_;
+    if (confirmed && (!took || missed_points)) {
       used.clear();
       AdoptTracklet(*confirmed, &result, &used, candidates);
     } else if (!took) {
       result.tentative = result.measurement.has_value();
       used.clear();
     }
+    if (result.state && result.state->measured) last_taken_t_ = t;
   }
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {

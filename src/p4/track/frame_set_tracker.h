@@ -144,6 +144,8 @@ class FrameSetTracker {
   FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images);
 
   const BallTracker& tracker() const { return tracker_; }
+  // Camera c's background model (empty unless a detector keeps one), as of the last Process.
+  const segment::BackgroundModel& background(int c) const { return backgrounds_[c]; }
 
   // For benchmarks: a clock the tracker reads between its stages (injected, so the tracker
   // itself reads no clock). Empty (the default): stages are not timed.
@@ -201,6 +203,7 @@ class FrameSetTracker {
   TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
   BallTracker tracker_;
   TrackInitiator initiator_;
+  TimeNs last_taken_t_ = 0;  // the last time-stamp whose measurement the filter took
   std::function<TimeNs()> clock_;
 };
 

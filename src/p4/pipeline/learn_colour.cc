@@ -1,0 +1,83 @@
+#include "p4/pipeline/learn_colour.h"
+
+#include <fmt/format.h>
+
+#include "p4/core/error.h"
+#include "p4/core/table.h"
+#include "p4/pipeline/frame_set_reader.h"
+
+namespace p4 {
+
+bool LearnColourOptions::IsValid(std::string* error) const {
+  if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1) {
+    if (error) *error = "colour learning: seconds, views and tracks must be positive";
+    return false;
+  }
+  return learning.IsValid(error) && tracking.IsValid(error);
+}
+
+LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>& sources,
+                                  const LearnColourOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  if (static_cast<int>(sources.size()) != rig.size()) {
+    throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
+                            sources.size()));
+  }
+  track::FrameSetOptions tracking = options.tracking;
+  tracking.use_background = false;
+  tracking.measure_on_background = false;
+  tracking.mask_with_background = true;  // whatever differs from the hall, of any colour
+  tracking.confirm_tracks = true;
+  // Every moving thing is a candidate (arms, legs, shirts): more of them than for a coloured ball.
+  tracking.mask_sigmas = options.mask_sigmas;
+  tracking.candidates_per_camera =
+      std::max(tracking.candidates_per_camera, options.candidates_per_camera);
+  track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
+  FrameSetReader reader(sources);
+  segment::ColourSamples samples;
+  LearnColourResult result;
+  std::optional<TimeNs> first;
+  FrameSet set;
+  while (reader.Next(&set)) {
+    if (!first) first = set.t;
+    result.seconds = ToSeconds(set.t - *first);
+    if (result.seconds > options.max_seconds) break;
+    const track::FrameSetResult r = tracker.Process(set.t, set.images);
+    // Only views the filter took at once: the track is confirmed, the view is the ball's.
+    if (!r.state || !r.state->measured || r.tentative || !r.measurement ||
+        r.measurement->cameras < 2) {
+      continue;
+    }
+    // Over the table and above it, where the ball in play flies and the players' shoes, legs
+    // and bodies do not; and flying (a track that has come to rest on two things that happen to
+    // meet across the views is not the ball).
+    const Eigen::Vector3d& p = r.measurement->position;
+    if (std::abs(p.x()) > table::kHalfLength || std::abs(p.y()) > table::kHalfWidth ||
+        p.z() < table::kBallRadius || p.z() > options.max_height ||
+        r.state->velocity.norm() < options.min_speed) {
+      continue;
+    }
+    if (!r.revisions.empty()) ++result.tracks;  // a tracklet confirmed: a new track
+    for (const track::Detection& d : r.detections) {
+      if (!d.accepted || !set.images[d.camera]) continue;
+      samples.AddDisc(*set.images[d.camera], d.pixel, d.diameter_px, options.learning,
+                      &tracker.background(d.camera));
+      ++result.views;
+    }
+    if (result.views >= options.min_views && result.tracks >= options.min_tracks &&
+        samples.size() >= 2 * options.learning.min_samples) {
+      break;
+    }
+  }
+  if (result.views == 0 || !samples.Learn(options.learning, &result.colour, &why)) {
+    throw Error(fmt::format(
+        "--ball auto: the ball was not seen flying in the first {:.1f} s of the sources ({} "
+        "view(s) in {} track(s){}{}); give its colour with --ball orange|white|yellow or "
+        "--classes FILE",
+        result.seconds, result.views, result.tracks, why.empty() ? "" : ": ", why));
+  }
+  return result;
+}
+
+}  // namespace p4

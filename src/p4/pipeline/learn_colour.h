@@ -1,0 +1,47 @@
+// `--ball auto`: the ball's colour learned from the first seconds of the sources (beyond the
+// paper's hand-set boxes, §3.1). A tracker that needs no colour looks at what differs from each
+// camera's background (any colour), keeps what is the ball's size in every view and agrees across
+// views (epipolar, §3.4), and starts a track only on what flies (track::TrackInitiator); the
+// core pixels of every view the filter then takes over the table (where the ball in play flies
+// and players' shoes and bodies are not) are the ball's colour samples, filled into the paper's
+// colour classes (segment/colour_learning.h). The edge: reads the sources.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "p4/geometry/rig.h"
+#include "p4/segment/colour_learning.h"
+#include "p4/track/frame_set_tracker.h"
+
+namespace p4 {
+
+struct LearnColourOptions {
+  double max_seconds = 10.0;  // of the sources looked at, at most
+  // It stops early after min_views views of the ball taken by the filter, in min_tracks tracks
+  // (one flight could be a shoe), with twice the pixels the learning needs.
+  int min_views = 60;
+  int min_tracks = 2;
+  int candidates_per_camera = 24;  // whatever moves is a candidate, the ball among many
+  double max_height = 1.0;   // m above the table top: views over the table below it are sampled
+  double min_speed = 1.5;    // m/s: ...while the track flies at least this fast
+  double mask_sigmas = 5.0;  // what differs from the hall by this many sigmas (less: noise)
+  segment::ColourLearningOptions learning;
+  track::FrameSetOptions tracking;  // its classes are AnyColour(), its detector masked
+
+  bool IsValid(std::string* error) const;
+};
+
+struct LearnColourResult {
+  segment::LearnedColour colour;
+  int views = 0;         // ball views sampled
+  int tracks = 0;        // tracks they came from
+  double seconds = 0.0;  // of the sources looked at
+};
+
+// Throws p4::Error when the ball was not seen flying enough to learn its colour (with what was
+// seen), or a source fails to open.
+LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>& sources,
+                                  const LearnColourOptions& options);
+
+}  // namespace p4
