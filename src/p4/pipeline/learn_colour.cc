@@ -31,6 +31,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   tracking.confirm_tracks = true;
   // Every moving thing is a candidate (arms, legs, shirts): more of them than for a coloured ball.
   tracking.mask_sigmas = options.mask_sigmas;
+  tracking.mask_grow = false;  // every colour passes: the mask alone draws the ball's outline
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
@@ -39,6 +40,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   LearnColourResult result;
   std::optional<TimeNs> first;
   FrameSet set;
+  bool new_track = false;
   while (reader.Next(&set)) {
     if (!first) first = set.t;
     result.seconds = ToSeconds(set.t - *first);
@@ -49,6 +51,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
         r.measurement->cameras < 2) {
       continue;
     }
+    if (!r.revisions.empty()) new_track = true;  // a tracklet confirmed: a new track
     // Over the table and above it, where the ball in play flies and the players' shoes, legs
     // and bodies do not; and flying (a track that has come to rest on two things that happen to
     // meet across the views is not the ball).
@@ -58,7 +61,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
         r.state->velocity.norm() < options.min_speed) {
       continue;
     }
-    if (!r.revisions.empty()) ++result.tracks;  // a tracklet confirmed: a new track
+    if (new_track) ++result.tracks, new_track = false;  // its first view sampled
     for (const track::Detection& d : r.detections) {
       if (!d.accepted || !set.images[d.camera]) continue;
       samples.AddDisc(*set.images[d.camera], d.pixel, d.diameter_px, options.learning,

@@ -127,7 +127,7 @@ int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
 }
 
 BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const BackgroundModel& bg,
-                                            const Roi& roi_in, double sigmas) {
+                                            const Roi& roi_in, double sigmas, bool grow) {
   const Roi roi = roi_in.empty() ? Roi{0, 0, image.width, image.height} : roi_in;
   const int bw = bg.width() / 2, bh = bg.height() / 2;
   if (static_cast<int>(mask_.size()) != bw * bh) mask_.assign(static_cast<std::size_t>(bw) * bh, 0);
@@ -143,8 +143,9 @@ BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const Backgr
   for (int by = by0; by < by1; ++by) {
     for (int bx = bx0; bx < bx1; ++bx) {
       uint8_t any = 0;
-      for (int dy = -1; dy <= 1 && !any; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
+      const int reach = grow ? 1 : 0;
+      for (int dy = -reach; dy <= reach && !any; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
           const int x = bx + dx, y = by + dy;
           if (x >= bx0 && x < bx1 && y >= by0 && y < by1 &&
               differs_[static_cast<std::size_t>(y) * bw + x]) {

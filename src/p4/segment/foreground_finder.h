@@ -76,10 +76,11 @@ class ForegroundFinder {
            const Roi& roi, const ForegroundOptions& options, std::vector<CoverageRegion>* out);
 
   // The blocks of `roi` (whole image when empty) that differ from the background by more than
-  // `sigmas`, grown by one block, as a mask for BlobFinder (valid until the next call; blocks
-  // outside the ROI's are left as they were). Precondition: the model has the image's size.
+  // `sigmas`, grown by one block unless `grow` is false, as a mask for BlobFinder (valid until
+  // the next call; blocks outside the ROI's are left as they were). Precondition: the model has
+  // the image's size.
   BlockMask DifferingBlocks(const ImageView& image, const BackgroundModel& background,
-                            const Roi& roi, double sigmas);
+                            const Roi& roi, double sigmas, bool grow = true);
 
   // Measures a window (e.g. a colour region's box grown by a margin) by coverage.
   // False when nothing in it is the ball.

@@ -113,7 +113,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   const auto colour_search = [&](const segment::Roi& roi) {
     segment::BlockMask blocks;
     if (masked) {
-      blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas);
+      blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas,
+                                          options_.mask_grow);
     }
     const int n =
         finders_[c].Find(image, lut_, roi, options_.segment, &regions, masked ? &blocks : nullptr);

@@ -68,6 +68,7 @@ struct FrameSetOptions {
   // by a block) can be the ball: a ball-coloured floor, banner or lamp never merges with it.
   bool mask_with_background = false;
   double mask_sigmas = 3.0;
+  bool mask_grow = true;  // the mask grown by a block (the tables cut a ball's faint edge)
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   segment::BallColour ball_colour;
