@@ -74,13 +74,24 @@ Target TargetOf(const std::string& family) {
 double Median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  if (v.size() % 2) return v[v.size() / 2];
+  const double a = v[v.size() / 2 - 1], b = v[v.size() / 2];
+  return b >= 1e9 ? b : 0.5 * (a + b);  // with a scene of no figure in the middle: none
 }
 
 std::string Figure(const nlohmann::json& j, const char* key, double scale, int digits) {
   if (!j.contains(key) || !j[key].is_number()) return "-";
   return fmt::format("{:.{}f}", j[key].get<double>() * scale, digits);
 }
+
+// RMSE of a scene with no measured row, or of none: no figure ("-"), the worst there is.
+constexpr double kNone = 1e9;
+
+bool Measured(const nlohmann::json& row) {
+  return row.contains("figures") && row["figures"].value("measured_rows", 0) > 0;
+}
+
+std::string Mm(double v) { return v >= kNone ? "-" : fmt::format("{:.2f}", v); }
 
 int Run(const SuiteArgs& a) {
   const auto started = std::chrono::steady_clock::now();
@@ -169,9 +180,11 @@ int Run(const SuiteArgs& a) {
         scene.exposure_ms,
         row.contains("ball_px") ? fmt::format("{:.1f}", row["ball_px"].get<double>()) : "-",
         scene.look, scene.ball,
-        failed.empty() ? Figure(figures, "position_rmse_mm", 1.0, 2) : "failed: " + failed,
-        Figure(figures, "position_median_mm", 1.0, 2), Figure(figures, "recall", 100.0, 1),
-        Figure(figures, "false_positive_rate", 100.0, 2));
+        !failed.empty()  ? "failed: " + failed
+        : !Measured(row) ? std::string("-")
+                         : Figure(figures, "position_rmse_mm", 1.0, 2),
+        Measured(row) ? Figure(figures, "position_median_mm", 1.0, 2) : "-",
+        Figure(figures, "recall", 100.0, 1), Figure(figures, "false_positive_rate", 100.0, 2));
     std::cout << line << std::flush;
     table += line;
     results.push_back(row);
@@ -193,13 +206,14 @@ int Run(const SuiteArgs& a) {
           ++failed;
           continue;
         }
-        rmse.push_back(row["figures"].value("position_rmse_mm", 1e9));
+        // A scene without a measured row has no error to show: it counts as the worst.
+        rmse.push_back(Measured(row) ? row["figures"].value("position_rmse_mm", kNone) : kNone);
         recall.push_back(row["figures"].value("recall", 0.0));
         fp.push_back(row["figures"].value("false_positive_rate", 1.0));
       }
       if (rmse.empty() && failed == 0) continue;
       const Target target = TargetOf(family);
-      const double worst_rmse = rmse.empty() ? 1e9 : *std::max_element(rmse.begin(), rmse.end());
+      const double worst_rmse = rmse.empty() ? kNone : *std::max_element(rmse.begin(), rmse.end());
       const double worst_recall =
           recall.empty() ? 0.0 : *std::min_element(recall.begin(), recall.end());
       const double worst_fp = fp.empty() ? 1.0 : *std::max_element(fp.begin(), fp.end());
@@ -218,9 +232,9 @@ int Run(const SuiteArgs& a) {
                          {"fp_median", Median(fp)},
                          {"target_met", met}});
       report += fmt::format(
-          "| {} | {} | {}{} | {:.2f} / {:.2f} | {:.1f} / {:.1f} | {:.2f} / {:.2f} | {} |\n", family,
-          set, rmse.size(), failed ? fmt::format(" ({} failed)", failed) : "", worst_rmse,
-          Median(rmse), 100.0 * worst_recall, 100.0 * Median(recall), 100.0 * worst_fp,
+          "| {} | {} | {}{} | {} / {} | {:.1f} / {:.1f} | {:.2f} / {:.2f} | {} |\n", family, set,
+          rmse.size(), failed ? fmt::format(" ({} failed)", failed) : "", Mm(worst_rmse),
+          Mm(Median(rmse)), 100.0 * worst_recall, 100.0 * Median(recall), 100.0 * worst_fp,
           100.0 * Median(fp), met ? "met" : "missed");
     }
   }

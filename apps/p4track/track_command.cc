@@ -23,7 +23,7 @@ struct TrackArgs {
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false, no_smoothing = false, no_confirm = false;
   std::string detector = "auto";
-  int stride = 1, threads = 1;
+  int stride = 1, threads = 1, candidates = 8;
   double epipolar_px = 4.0;
   std::vector<std::string> players{"A", "B"};
   std::string first_server = "A";
@@ -63,6 +63,7 @@ int Run(const TrackArgs& a) {
   options.single_camera_fallback = !a.no_single_camera;
   options.epipolar_px = a.epipolar_px;
   options.threads = a.threads;
+  options.candidates_per_camera = a.candidates;
   segment::BallColour::Named(a.ball, &options.ball_colour);
   if (learn) {
     LearnColourOptions learning;
@@ -158,6 +159,10 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
                   "learnt background with the ball's colour mixed in, measured by coverage; auto: "
                   "background for a white ball, colour otherwise")
       ->check(CLI::IsMember({"auto", "colour", "masked", "coverage", "background"}))
+      ->capture_default_str();
+  cmd->add_option("--candidates", args->candidates,
+                  "Candidate regions kept per camera and frame set (moving ones first)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--stride", args->stride, "Test every N-th pixel of a row")
       ->check(CLI::Range(1, 4))
