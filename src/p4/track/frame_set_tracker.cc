@@ -247,6 +247,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
     std::vector<TrackletPoint> points;
     std::vector<bool> taken_detection(offset[n - 1] + candidates[n - 1].size(), false);
     for (const Hypothesis& h : hypotheses) {
+      if (h.fragment) continue;  // a new track starts from whole balls
       TrackletPoint p{t, ToMeasurement(h), {}};
       for (const auto& [c, k] : h.members) p.detections.push_back(offset[c] + k);
       if (std::any_of(p.detections.begin(), p.detections.end(),
@@ -412,10 +413,12 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
             const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
             const double ratio = candidates[c][m].diameter_px / std::max(1e-6, expected);
             if (expected <= 0.0 || ratio > options_.max_size_ratio ||
-                ratio < 1.0 / options_.max_size_ratio - 0.25) {
+                ratio < options_.min_fragment_ratio) {
               sized = false;
               break;
             }
+            // Smaller than a half-hidden ball: the part of a shaded ball that the tables took.
+            if (ratio < options_.min_size_ratio) h.fragment = true;
             h.size_misfit += std::abs(std::log(ratio));
           }
           if (!sized) continue;
@@ -429,19 +432,30 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
   };
   std::stable_sort(out.begin(), out.end(), [&](const Hypothesis& a, const Hypothesis& b) {
     if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
+    if (a.fragment != b.fragment) return b.fragment;
     return score(a) < score(b);
   });
   return out;
 }
 
 const FrameSetTracker::Hypothesis* FrameSetTracker::Pick(
-    const std::vector<Hypothesis>& hypotheses, const std::optional<Eigen::Vector3d>& predicted) {
-  if (hypotheses.empty()) return nullptr;
-  if (!predicted) return &hypotheses.front();
-  // Distance to the prediction ranks hypotheses of as many views; it never rejects one (a wrong
-  // track must not hide the ball: the filter's gate and the initiator judge).
-  const Hypothesis* best = &hypotheses.front();
+    const std::vector<Hypothesis>& hypotheses,
+    const std::optional<Eigen::Vector3d>& predicted) const {
+  // A fragment is the ball only where the track expects it.
+  const auto usable = [&](const Hypothesis& h) {
+    return !h.fragment ||
+           (predicted && (h.estimate.point - *predicted).norm() <= options_.fragment_max_distance);
+  };
+  const Hypothesis* best = nullptr;
   for (const Hypothesis& h : hypotheses) {
+    if (!usable(h)) continue;
+    if (!best) {
+      best = &h;
+      if (!predicted) break;
+      continue;
+    }
+    // Distance to the prediction ranks hypotheses of as many views; it never rejects one (a
+    // wrong track must not hide the ball: the filter's gate and the initiator judge).
     if (h.members.size() < best->members.size()) break;
     if ((h.estimate.point - *predicted).norm() < (best->estimate.point - *predicted).norm()) {
       best = &h;

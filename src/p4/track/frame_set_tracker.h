@@ -44,6 +44,12 @@ struct FrameSetOptions {
   // Each agreeing view's ball diameter within this factor of the one expected at the point
   // found (down to 1 / factor - 0.25: a ball half hidden looks smaller).
   double max_size_ratio = 1.6;
+  double min_size_ratio = 1.0 / 1.6 - 0.25;
+  // Smaller views, down to this share, are a fragment (the lit part of a shaded ball the tables
+  // took): such a hypothesis never starts a track and continues one only within
+  // fragment_max_distance of the prediction.
+  double min_fragment_ratio = 0.2;
+  double fragment_max_distance = 0.1;  // m
   // Where a ball can be: |x|, |y| and the height above the table top (m); the floor below.
   Eigen::Vector3d hall_half_size{8.0, 6.0, 5.0};
   bool use_roi = true;
@@ -162,12 +168,14 @@ class FrameSetTracker {
     std::vector<std::pair<int, int>> members;  // (camera, candidate)
     PointEstimate estimate;
     double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
+    bool fragment = false;     // a view below min_size_ratio (see there)
   };
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
   // The hypothesis nearest the prediction among those of most views (the best without one).
-  static const Hypothesis* Pick(const std::vector<Hypothesis>& hypotheses,
-                                const std::optional<Eigen::Vector3d>& predicted);
+  // Fragments only near the prediction.
+  const Hypothesis* Pick(const std::vector<Hypothesis>& hypotheses,
+                         const std::optional<Eigen::Vector3d>& predicted) const;
   Measurement ToMeasurement(const Hypothesis& h) const;
   // A confirmed tracklet becomes the track: the filter replays its points; all but the last
   // become revisions of their time-stamps.
