@@ -1,5 +1,6 @@
 #include "p4/track/track_initiator.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -8,8 +9,8 @@ namespace p4::track {
 
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
   if (confirm_points < 2 || !(min_travel >= 0.0) || !(gate > 0.0) || !(gate_sigmas >= 0.0) ||
-      !(max_gap_s > 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 ||
-      max_missed < 0) {
+      !(max_gap_s > 0.0) || !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) ||
+      !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0) {
     if (error) {
       *error =
           "track initiator: need confirm_points >= 2, positive gate, gap, speed and tracklets, "
@@ -50,10 +51,27 @@ std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& track
 }
 
 bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
-  if (static_cast<int>(tracklet.points.size()) < options_.confirm_points) return false;
+  const auto& points = tracklet.points;
+  if (static_cast<int>(points.size()) < options_.confirm_points) return false;
   const Eigen::Vector3d travel =
-      tracklet.points.back().measurement.position - tracklet.points.front().measurement.position;
-  return travel.norm() >= options_.min_travel;
+      points.back().measurement.position - points.front().measurement.position;
+  if (travel.norm() >= options_.min_travel) return true;
+  // Falling: z = a + b t + c t^2 by least squares, c against -g/2.
+  const double span = ToSeconds(points.back().t - points.front().t);
+  if (span < options_.fall_span_s) return false;
+  Eigen::MatrixXd a(points.size(), 3);
+  Eigen::VectorXd z(points.size());
+  double sigma = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double t = ToSeconds(points[i].t - points.front().t);
+    a.row(i) << 1.0, t, t * t;
+    z(i) = points[i].measurement.position.z();
+    sigma = std::max(sigma, Sigma(points[i].measurement));
+  }
+  const Eigen::Vector3d fit = a.colPivHouseholderQr().solve(z);
+  const double rms = std::sqrt((a * fit - z).squaredNorm() / static_cast<double>(points.size()));
+  const double half_g = 0.5 * options_.gravity;
+  return std::abs(fit(2) + half_g) <= options_.fall_tolerance * half_g && rms <= 2.0 * sigma;
 }
 
 std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletPoint> candidates) {

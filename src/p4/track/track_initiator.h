@@ -9,7 +9,8 @@
 // measurements' own noise. A tracklet is confirmed, and may start the filter's track, once it
 // has confirm_points points in a row and has travelled min_travel: the ball in play moves, the
 // hall does not. Points older than max_span_s slide out (a static spot never confirms however
-// long it stays); a tracklet not extended for max_gap_s ends.
+// long it stays); a tracklet not extended for max_gap_s ends. A slow ball confirms by falling
+// with gravity's curvature instead (a toss near its top).
 //
 // World frame, metres, seconds (time-stamps in ns from the caller). Pure.
 #pragma once
@@ -27,6 +28,11 @@ namespace p4::track {
 struct TrackInitiatorOptions {
   int confirm_points = 4;    // points in a row that confirm a tracklet
   double min_travel = 0.10;  // m between its first and last point (2.5 ball diameters)
+  // A slow ball (a serve toss near its top) travels less, but falls as nothing else in the hall
+  // does: a tracklet spanning fall_span_s whose heights fit a parabola with gravity's curvature
+  // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) is confirmed too.
+  double fall_span_s = 0.1;
+  double fall_tolerance = 0.3;
   double gate = 0.03;        // m of model error (spin, a bounce's start) in the prediction...
   double gate_sigmas = 4.0;  // ...plus this many sigmas of the measurements and the velocity
   double max_gap_s = 0.07;   // a tracklet not extended this long ends...

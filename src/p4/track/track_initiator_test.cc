@@ -94,6 +94,30 @@ TEST(TrackInitiator, ABounceBreaksTheChainAndTheFlightAfterItIsConfirmedAgain) {
   EXPECT_TRUE(after);
 }
 
+// A serve toss seen only around its top (a hand hid its rise): it travels less than 10 cm in a
+// quarter of a second but falls with gravity's curvature, which confirms it; a lamp measured with
+// the same noise does not fall.
+TEST(TrackInitiator, ATossNearItsTopIsConfirmedByItsFall) {
+  TrackInitiator initiator;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  std::optional<int> confirmed_at;
+  for (int k = 0; k < 30 && !confirmed_at; ++k) {
+    const double t = (k - 12) / kRate;  // the top at k = 12
+    const Eigen::Vector3d toss(-1.6 + noise(rng), 0.2 + noise(rng), 0.3 - 4.9 * t * t + noise(rng));
+    const Eigen::Vector3d lamp(1.0 + noise(rng), -0.4 + noise(rng), 0.6 + noise(rng));
+    const std::vector<TrackletPoint> candidates = {Point(k, toss, 0), Point(k, lamp, 1)};
+    if (const auto c = initiator.Push(FromSeconds(k / kRate), candidates)) {
+      EXPECT_EQ(c->points.back().detections, std::vector<int>{0});
+      confirmed_at = k;
+    }
+  }
+  ASSERT_TRUE(confirmed_at.has_value());
+  // 0.1 s of points (13 at 120 per second) are needed for the curvature to show.
+  EXPECT_GE(*confirmed_at, 12);
+  EXPECT_LE(*confirmed_at, 16);
+}
+
 TEST(TrackInitiator, ValidatesItsOptions) {
   TrackInitiatorOptions o;
   std::string why;
