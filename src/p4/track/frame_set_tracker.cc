@@ -107,9 +107,9 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   const bool masked = options_.mask_with_background && background.ready();
   // The colour tables first (paper §3.4): in the predicted window, else the whole image. On a
   // known background a colour region must also differ from it (lamps, banners, lines, a ball
-  // lying on the floor do not) and is measured by its coverage. Only when the colours find
-  // nothing, what differs from the background with the ball's colour mixed in (a blurred streak,
-  // a ball of 3 px, a shaded or white ball): in the window, then the whole image.
+  // lying on the floor do not) and is measured by its coverage; what differs from the background
+  // with the ball's colour mixed in (a blurred streak, a ball of 3 px, a shaded or white ball)
+  // joins them (`both` below).
   const auto colour_search = [&](const segment::Roi& roi) {
     segment::BlockMask blocks;
     if (masked) {
@@ -166,9 +166,12 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // that were at the same place in the last set (a letter, a lamp; the ball in play moves) come
   // after the others; those static for static_frames sets are dropped; the first
   // candidates_per_camera are kept.
+  const auto by_coverage = [&](int k) {
+    return !from_colour || (measure_only && measured_[c][k].has_value());
+  };
   const auto region_of = [&](int k) -> const segment::Region& {
-    const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
-    return !from_colour ? coverage[k].region : (by_coverage ? measured_[c][k]->region : regions[k]);
+    return !from_colour ? coverage[k].region
+                        : (by_coverage(k) ? measured_[c][k]->region : regions[k]);
   };
   std::vector<std::pair<bool, int>> order;  // (still, region)
   for (int k = 0; k < found; ++k) {
@@ -188,13 +191,10 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     order.resize(options_.candidates_per_camera);
   }
   for (const auto& [still, k] : order) {
-    const bool by_coverage = !from_colour || (measure_only && measured_[c][k]);
     const segment::Region& r = region_of(k);
-    std::optional<double> coverage_diameter;
-    if (by_coverage) coverage_diameter = r.diameter;
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
-    if (coverage_diameter) {
-      d.diameter_px = *coverage_diameter;  // the coverage sum: the disc's area, blur or not
+    if (by_coverage(k)) {
+      d.diameter_px = r.diameter;  // the coverage sum: the disc's area, blur or not
     } else if (options_.refine) {
       // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
       // differently in each camera, which the epipolar check does not forgive.
@@ -239,13 +239,14 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
   const bool confirming = options_.confirm_tracks && n >= 2;
   std::optional<Tracklet> confirmed;
+  // Detection (camera c, candidate k) is result.detections[offset[c] + k] (flattened below).
+  std::vector<int> offset(n + 1, 0);
+  for (int c = 0; c < n; ++c) offset[c + 1] = offset[c] + static_cast<int>(candidates[c].size());
+  std::vector<int> adopted;  // indices into result.detections of an adopted tracklet's last point
   if (confirming) {
     // Every distinct candidate of this time-stamp goes to the initiator, best first.
-    std::vector<int> offset(n, 0);
-    for (int c = 1; c < n; ++c)
-      offset[c] = offset[c - 1] + static_cast<int>(candidates[c - 1].size());
     std::vector<TrackletPoint> points;
-    std::vector<bool> taken_detection(offset[n - 1] + candidates[n - 1].size(), false);
+    std::vector<bool> taken_detection(offset[n], false);
     for (const Hypothesis& h : hypotheses) {
       if (h.fragment) continue;  // a new track starts from whole balls
       TrackletPoint p{t, ToMeasurement(h), {}};
@@ -269,10 +270,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
     result.measurement = SingleView(candidates, predicted, predicted_covariance, &used);
   }
   const TimeNs t2 = clock_ ? clock_() : 0;
-  if (!confirming || tracker_.tracking()) {
-    result.state =
-        tracker_.Step(t, confirming && !tracker_.tracking() ? std::nullopt : result.measurement);
-  }
+  // With confirmation a track starts only from the initiator (below), never from this step.
+  if (!confirming || tracker_.tracking()) result.state = tracker_.Step(t, result.measurement);
   if (confirming) {
     const bool took = result.state && result.state->measured;
     // A confirmed tracklet replaces a track that did not take this time-stamp's measurement, or
@@ -283,7 +282,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
                                confirmed->points[confirmed->points.size() - 2].t > last_taken_t_;
     if (confirmed && (!took || missed_points)) {
       used.clear();
-      AdoptTracklet(*confirmed, &result, &used, candidates);
+      AdoptTracklet(*confirmed, &result);
+      adopted = confirmed->points.back().detections;
     } else if (!took) {
       result.tentative = result.measurement.has_value();
       used.clear();
@@ -294,6 +294,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);
   }
+  for (int i : adopted) result.detections[i].accepted = true;
   if (clock_) {
     const TimeNs t3 = clock_();
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
@@ -301,9 +302,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
   return result;
 }
 
-void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result,
-                                    std::vector<std::pair<int, int>>* used,
-                                    const std::vector<std::vector<Detection>>& candidates) {
+void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result) {
   tracker_ = BallTracker(tracker_options_);
   std::optional<TrackedState> last;
   for (const TrackletPoint& p : tracklet.points) {
@@ -313,21 +312,9 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
       result->revisions.push_back({p.t, p.measurement, *last, p.detections});
     }
   }
-  const TrackletPoint& now = tracklet.points.back();
   result->state = last;
-  result->measurement = now.measurement;
+  result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
-  // The last point's detections are this time-stamp's: back to (camera, candidate).
-  for (int index : now.detections) {
-    for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
-      const int size = static_cast<int>(candidates[c].size());
-      if (index < size) {
-        used->emplace_back(c, index);
-        break;
-      }
-      index -= size;
-    }
-  }
 }
 
 int FrameSetTracker::SpotCount(int camera, const Eigen::Vector2d& pixel) {

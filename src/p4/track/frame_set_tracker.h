@@ -178,10 +178,8 @@ class FrameSetTracker {
                          const std::optional<Eigen::Vector3d>& predicted) const;
   Measurement ToMeasurement(const Hypothesis& h) const;
   // A confirmed tracklet becomes the track: the filter replays its points; all but the last
-  // become revisions of their time-stamps.
-  void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result,
-                     std::vector<std::pair<int, int>>* used,
-                     const std::vector<std::vector<Detection>>& candidates);
+  // become revisions of their time-stamps, the last is this time-stamp's state and measurement.
+  void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result);
   std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         const Eigen::Matrix3d& predicted_covariance,
