@@ -29,9 +29,9 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   tracking.measure_on_background = false;
   tracking.mask_with_background = true;  // whatever differs from the hall, of any colour
   tracking.confirm_tracks = true;
-  // Every moving thing is a candidate (arms, legs, shirts): more of them than for a coloured ball.
   tracking.mask_sigmas = options.mask_sigmas;
   tracking.mask_grow = false;  // every colour passes: the mask alone draws the ball's outline
+  // Every moving thing is a candidate (arms, legs, shirts): more of them than for a coloured ball.
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);

@@ -48,8 +48,9 @@ Unmixed Unmix(const Yuv& o, const Yuv& bg, const BallColour& ball, const UnmixOp
   const double w = std::sqrt(options.chroma_weight);
   // Weighted vectors: d = o - bg, e1 = K - bg, e2 = lit - K.
   const double d[3] = {o.y - bg.y, w * (o.u - bg.u), w * (o.v - bg.v)};
-  const double e1[3] = {16.0 - bg.y, w * (128.0 - bg.u), w * (128.0 - bg.v)};
-  const double e2[3] = {ball.lit.y - 16.0, w * (ball.lit.u - 128.0), w * (ball.lit.v - 128.0)};
+  const Yuv& k = kBlack;
+  const double e1[3] = {k.y - bg.y, w * (k.u - bg.u), w * (k.v - bg.v)};
+  const double e2[3] = {ball.lit.y - k.y, w * (ball.lit.u - k.u), w * (ball.lit.v - k.v)};
   const auto dot = [](const double* a, const double* b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
   };

@@ -19,6 +19,9 @@ struct Yuv {
   float y = 16.0f, u = 128.0f, v = 128.0f;
 };
 
+// K above: black, where every shade of every colour ends.
+inline constexpr Yuv kBlack{16.0f, 128.0f, 128.0f};
+
 struct BallColour {
   Yuv lit{137.0f, 65.0f, 200.0f};  // an orange ball under indoor light
 

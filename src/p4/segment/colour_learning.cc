@@ -80,14 +80,20 @@ bool ColourSamples::Learn(const ColourLearningOptions& options, LearnedColour* o
   const Yuv lit{median(ys), median(us), median(vs)};
   out->ball.lit = lit;
   // Shading scales the ball's colour along the line from black to it (ball_colour.h): a sample's
-  // chroma off that line at its own luma is not the ball (the hall at the disc's edge, a hand).
-  // Samples farther off than 3 robust sigmas (at least 4 levels) are left out
+  // shade is its luma's share of the lit luma, and its chroma off that line at its shade is not
+  // the ball (the hall at the disc's edge, a hand). Samples farther off than 3 robust sigmas (at
+  // least 4 levels) are left out.
+  const Yuv& k = kBlack;
+  const auto on_line = [&](double shade, double lit_c, double black_c) {
+    return black_c + shade * (lit_c - black_c);
+  };
+  std::vector<double> shade(samples_.size());
   std::vector<float> off(samples_.size());
   for (std::size_t i = 0; i < samples_.size(); ++i) {
     const YuvSample& p = samples_[i];
-    const double shade = std::max(0.0, (p.y - 16.0) / std::max(1.0, lit.y - 16.0));
-    off[i] = static_cast<float>(std::hypot(p.u - (128.0 + shade * (lit.u - 128.0)),
-                                           p.v - (128.0 + shade * (lit.v - 128.0))));
+    shade[i] = std::max(0.0, (p.y - double{k.y}) / std::max(1.0, double{lit.y} - k.y));
+    off[i] = static_cast<float>(
+        std::hypot(p.u - on_line(shade[i], lit.u, k.u), p.v - on_line(shade[i], lit.v, k.v)));
   }
   const float med = median(off);
   std::vector<float> dev(off.size());
@@ -99,8 +105,7 @@ bool ColourSamples::Learn(const ColourLearningOptions& options, LearnedColour* o
   // line), each box the line's colour over its band, widened by the bound and the margin.
   std::vector<float> shades;
   for (std::size_t i = 0; i < samples_.size(); ++i) {
-    const double shade = (samples_[i].y - 16.0) / std::max(1.0, lit.y - 16.0);
-    if (off[i] <= bound && shade >= 0.25) shades.push_back(static_cast<float>(shade));
+    if (off[i] <= bound && shade[i] >= 0.25) shades.push_back(static_cast<float>(shade[i]));
   }
   if (static_cast<int>(shades.size()) < options.min_samples / 2) {
     if (error) *error = "the ball's pixels do not share one colour";
@@ -119,15 +124,15 @@ bool ColourSamples::Learn(const ColourLearningOptions& options, LearnedColour* o
     const double z = s0 + (s1 - s0) * (b + 1) / options.boxes;
     ColorClass box;
     box.name = fmt::format("ball_{}", b);
-    box.y = {level(16.0 + a * (lit.y - 16.0) - options.margin),
-             level(16.0 + z * (lit.y - 16.0) + options.margin)};
-    const auto range = [&](double c) {
-      const double ca = 128.0 + a * (c - 128.0), cz = 128.0 + z * (c - 128.0);
+    box.y = {level(on_line(a, lit.y, k.y) - options.margin),
+             level(on_line(z, lit.y, k.y) + options.margin)};
+    const auto range = [&](double lit_c, double black_c) {
+      const double ca = on_line(a, lit_c, black_c), cz = on_line(z, lit_c, black_c);
       return std::array<uint8_t, 2>{level(std::min(ca, cz) - tolerance),
                                     level(std::max(ca, cz) + tolerance)};
     };
-    box.u = range(lit.u);
-    box.v = range(lit.v);
+    box.u = range(lit.u, k.u);
+    box.v = range(lit.v, k.v);
     out->classes.classes.push_back(box);
   }
   out->samples = static_cast<int>(shades.size());

@@ -25,7 +25,7 @@ struct ColourLearningOptions {
   double core_share = 0.35;    // pixels within this share of the ball's radius are sampled...
   double min_sigmas = 4.0;     // ...where their block differs from the background by this much
   int min_samples = 200;       // fewer pixels than this learn nothing
-  int boxes = 3;               // luma bands (the ball's shading runs along Y)
+  int boxes = 3;               // bands of shade along the ball's shading line
   int margin = 8;              // levels added around each box
   double max_off_line = 12.0;  // chroma levels a sample of the ball may lie off its shading line
 
@@ -33,9 +33,9 @@ struct ColourLearningOptions {
 };
 
 struct LearnedColour {
-  ColorClassSet classes;  // "ball_0".. (LearnClasses)
-  BallColour ball;        // lit: the median of the brightest band
-  int samples = 0;
+  ColorClassSet classes;  // "ball_0".., one box per band of shade along the shading line
+  BallColour ball;        // lit: the median of the brightest third of the samples
+  int samples = 0;        // samples on the line that the boxes were drawn from
 };
 
 class ColourSamples {
