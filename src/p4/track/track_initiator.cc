@@ -5,6 +5,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "p4/track/flight_model.h"
+
 namespace p4::track {
 
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
@@ -37,13 +39,14 @@ std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& track
   if (tracklet.points.size() == 1) return {p1, options_.gate + options_.max_speed * dt};
   const TrackletPoint& before = tracklet.points[tracklet.points.size() - 2];
   const double dt01 = ToSeconds(last.t - before.t);
-  const Eigen::Vector3d mean_v = (p1 - before.measurement.position) / dt01;
-  // The mean velocity is the one at the middle of the interval: carry it to the last point.
-  const auto accel = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d {
-    return Eigen::Vector3d(0.0, 0.0, -options_.gravity) - options_.drag_per_mass * v.norm() * v;
-  };
-  const Eigen::Vector3d v1 = mean_v + accel(mean_v) * (0.5 * dt01);
-  const Eigen::Vector3d predicted = p1 + v1 * dt + 0.5 * accel(v1) * dt * dt;
+  // The mean velocity is the one at the middle of the interval: carried to the last point, then
+  // the ball flown dt on (the tracker's flight model: gravity and drag, no spin).
+  const Eigen::Vector3d no_spin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d middle = p1;  // (its position is not needed)
+  Eigen::Vector3d v = (p1 - before.measurement.position) / dt01;
+  MidpointStep<double>(&middle, &v, no_spin, 0.5 * dt01, options_.gravity, options_.drag_per_mass);
+  Eigen::Vector3d predicted = p1;
+  MidpointStep<double>(&predicted, &v, no_spin, dt, options_.gravity, options_.drag_per_mass);
   // The velocity is as good as the two points' difference: its error grows with dt / dt01.
   const double sigma = std::max(Sigma(last.measurement), Sigma(before.measurement));
   const double radius = options_.gate + options_.gate_sigmas * sigma * (1.0 + 1.5 * dt / dt01);
@@ -110,7 +113,6 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   });
   std::vector<bool> tracklet_taken(tracklets_.size(), false);
   std::vector<int> extended_rank(candidates.size(), 0);  // of the tracklet a candidate extended
-  std::vector<Tracklet> grown;
   for (const Pair& p : pairs) {
     if (tracklet_taken[p.tracklet] || extended_rank[p.candidate] > 0) continue;
     tracklet_taken[p.tracklet] = true;
@@ -120,14 +122,13 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   }
   // Every candidate that did not extend a tracklet of two points or more also starts one of its
   // own (a stray that took the ball's first point must not cost the ball its tracklet).
+  // (Tracklets not extended at t keep waiting, up to max_gap_s.)
   for (int j = 0; j < static_cast<int>(candidates.size()); ++j) {
     if (extended_rank[j] < 2) {
-      grown.push_back(Tracklet{{candidates[j]}});
-      grown.back().points.back().stamp = stamp;
+      tracklets_.push_back(Tracklet{{candidates[j]}});
+      tracklets_.back().points.back().stamp = stamp;
     }
   }
-  // Tracklets not extended at t keep waiting (up to max_gap_s); the new ones join the list.
-  for (Tracklet& k : grown) tracklets_.push_back(std::move(k));
   if (static_cast<int>(tracklets_.size()) > options_.max_tracklets) {
     // Keep the longest.
     std::stable_sort(
