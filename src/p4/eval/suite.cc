@@ -98,37 +98,25 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
 }
 
 std::vector<std::string> SuiteScene::SimulateArgs() const {
-  std::vector<std::string> a = {"simulate",
-                                "--cameras",
-                                std::to_string(cameras),
-                                "--size",
-                                fmt::format("{}x{}", width, height),
-                                "--fps",
-                                std::to_string(fps),
-                                "--exposure-ms",
-                                fmt::format("{:.2f}", exposure_ms),
-                                "--fov",
-                                fmt::format("{:.1f}", fov_deg),
-                                "--noise",
-                                fmt::format("{:.2f}", noise),
-                                "--crf",
-                                std::to_string(crf),
-                                "--vignetting",
-                                fmt::format("{:.2f}", vignetting),
-                                "--defocus",
-                                fmt::format("{:.2f}", defocus_px),
-                                "--jitter",
-                                fmt::format("{:.2f}", jitter_m),
-                                "--look",
-                                look,
-                                "--ball",
-                                ball,
-                                "--seed",
-                                std::to_string(seed),
-                                "--points",
-                                std::to_string(points),
-                                "--max-duration",
-                                fmt::format("{:.2f}", seconds)};
+  const std::pair<const char*, std::string> options[] = {
+      {"--cameras", std::to_string(cameras)},
+      {"--size", fmt::format("{}x{}", width, height)},
+      {"--fps", std::to_string(fps)},
+      {"--exposure-ms", fmt::format("{:.2f}", exposure_ms)},
+      {"--fov", fmt::format("{:.1f}", fov_deg)},
+      {"--noise", fmt::format("{:.2f}", noise)},
+      {"--crf", std::to_string(crf)},
+      {"--vignetting", fmt::format("{:.2f}", vignetting)},
+      {"--defocus", fmt::format("{:.2f}", defocus_px)},
+      {"--jitter", fmt::format("{:.2f}", jitter_m)},
+      {"--look", look},
+      {"--ball", ball},
+      {"--seed", std::to_string(seed)},
+      {"--points", std::to_string(points)},
+      {"--max-duration", fmt::format("{:.2f}", seconds)},
+  };
+  std::vector<std::string> a = {"simulate"};
+  for (const auto& [flag, value] : options) a.insert(a.end(), {flag, value});
   if (distortion) a.push_back("--distortion");
   return a;
 }
