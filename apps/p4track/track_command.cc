@@ -66,6 +66,10 @@ int Run(const TrackArgs& a) {
   options.candidates_per_camera = a.candidates;
   segment::BallColour::Named(a.ball, &options.ball_colour);
   if (learn) {
+    // The folder first: a run that cannot save what it learns should not spend the time.
+    std::error_code ec;
+    std::filesystem::create_directories(a.out, ec);
+    if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
     LearnColourOptions learning;
     learning.tracking = options;
     spdlog::info("learning the ball's colour from the sources' first {:.0f} s",
@@ -73,7 +77,6 @@ int Run(const TrackArgs& a) {
     const LearnColourResult learnt = LearnBallColour(rig, a.sources, learning);
     classes = learnt.colour.classes;
     options.ball_colour = learnt.colour.ball;
-    std::filesystem::create_directories(a.out);
     const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
     WriteColorClasses(classes, saved);
     const segment::Yuv& lit = learnt.colour.ball.lit;
