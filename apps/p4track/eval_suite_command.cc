@@ -71,21 +71,21 @@ Target TargetOf(const std::string& family) {
   return {0.0, 1.0, 50.0, 1e9};  // mono
 }
 
+// RMSE of a scene with no measured row, or of none: no figure ("-"), the worst there is.
+constexpr double kNone = 1e9;
+
 double Median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   if (v.size() % 2) return v[v.size() / 2];
   const double a = v[v.size() / 2 - 1], b = v[v.size() / 2];
-  return b >= 1e9 ? b : 0.5 * (a + b);  // with a scene of no figure in the middle: none
+  return b >= kNone ? b : 0.5 * (a + b);  // with a scene of no figure in the middle: none
 }
 
 std::string Figure(const nlohmann::json& j, const char* key, double scale, int digits) {
   if (!j.contains(key) || !j[key].is_number()) return "-";
   return fmt::format("{:.{}f}", j[key].get<double>() * scale, digits);
 }
-
-// RMSE of a scene with no measured row, or of none: no figure ("-"), the worst there is.
-constexpr double kNone = 1e9;
 
 bool Measured(const nlohmann::json& row) {
   return row.contains("figures") && row["figures"].value("measured_rows", 0) > 0;
