@@ -268,7 +268,9 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
       }
       alpha = std::clamp(alpha, 0.0, 1.0);
       if (alpha < 0.05) continue;
-      if (options.lut && alpha >= options.core_alpha) {
+      // The core's colour is judged where the block's own colour says it is mostly ball: a
+      // small streak's chroma (half resolution, smeared by the encoder) is the background's too.
+      if (options.lut && alpha >= options.core_alpha && block_alpha[b] >= options.core_alpha) {
         ++core;
         in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
       }

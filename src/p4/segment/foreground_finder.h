@@ -42,9 +42,10 @@ struct ForegroundOptions {
   // than about a metre); regions outside it are not kept.
   double min_diameter_px = 1.5, max_diameter_px = 60.0;
   // A round region (major < core_max_elongation x minor: not a blur streak) with at least
-  // core_min_pixels pixels covered by >= core_alpha must show the ball's colour in these colour
-  // classes (the paper's tables) for at least core_share of them: skin or a shirt unmixes as a
-  // shaded ball, the tables tell them apart. Null: no such check.
+  // core_min_pixels pixels covered by >= core_alpha, in blocks whose colour is >= core_alpha
+  // ball, must show the ball's colour in these colour classes (the paper's tables) for at least
+  // core_share of them: skin or a shirt unmixes as a shaded ball, the tables tell them apart (a
+  // small blurred ball, whose chroma is mostly the background's, is not judged). Null: no check.
   const ColorLut* lut = nullptr;
   uint32_t lut_mask = 0xffffffffu;
   double core_alpha = 0.5, core_share = 0.2, core_max_elongation = 2.0;

@@ -4,12 +4,14 @@
 // balls beside white lines, lamps, banners, shirts, logos) and a ball held still.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "p4/core/table.h"
 #include "p4/segment/background_model.h"
 #include "p4/segment/blob_finder.h"
+#include "p4/segment/color_classes.h"
 #include "p4/segment/colour_learning.h"
 #include "p4/segment/foreground_finder.h"
 #include "p4/sim/camera_layout.h"
@@ -83,11 +85,32 @@ class Scene {
     content.players[1] = {2.25 + 0.1 * std::sin(1.1 * t + 1.0), 0.3};
     renderer_->Render(content, k + 1000, &frame_);
   }
+  // A cheap encoder's chroma: each chroma sample the mean of its 3x3 neighbours (the ball's
+  // colour spread over its surroundings, as H.264 at a low rate does to a ball of 3-5 px).
+  void SmearChroma() {
+    const int w = frame_.chroma_width(), h = frame_.chroma_height();
+    for (uint8_t* plane : {frame_.u(), frame_.v()}) {
+      const std::vector<uint8_t> copy(plane, plane + static_cast<std::size_t>(w) * h);
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          int sum = 0, n = 0;
+          for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+              sum += copy[static_cast<std::size_t>(yy) * w + xx], ++n;
+            }
+          }
+          plane[static_cast<std::size_t>(y) * w + x] = static_cast<uint8_t>((sum + n / 2) / n);
+        }
+      }
+    }
+  }
   // The region nearest the exact centre, whole-image search.
   std::optional<CoverageRegion> Find(const BallColour& ball, const Eigen::Vector2d& near,
-                                     std::vector<CoverageRegion>* all = nullptr) {
+                                     std::vector<CoverageRegion>* all = nullptr,
+                                     const ForegroundOptions& options = {}) {
     std::vector<CoverageRegion> regions;
-    finder_.Find(frame_.View(), background_, ball, {}, ForegroundOptions{}, &regions);
+    finder_.Find(frame_.View(), background_, ball, {}, options, &regions);
     if (all) *all = regions;
     std::optional<CoverageRegion> best;
     for (const auto& r : regions) {
@@ -223,6 +246,38 @@ TEST(ForegroundScene, ATwentyPixelStreakAtASixtiethOfASecond) {
   ASSERT_TRUE(e.found);
   EXPECT_GT(length, 15.0);
   EXPECT_NEAR(e.streak_px, length, 0.25 * length);  // measured 20 % short
+}
+
+TEST(ForegroundScene, ASmallStreakWhoseChromaTheEncoderSmearedIsStillTheBall) {
+  // A webcam: a ball of about 5 px blurred over 1/60 s, its chroma spread by the encoder. The
+  // colour tables, which tell skin and shirts from the ball in a round region's core, see
+  // little of the ball's colour in it: they must not judge a core whose blocks' colour is
+  // mostly the background's, and so must find the ball almost wherever it is found without them.
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const ColorLut lut = DefaultOrangeBall().BuildLut();
+  ForegroundOptions with_tables;
+  with_tables.lut = &lut;
+  with_tables.lut_mask = DefaultOrangeBall().MaskOf("ball");
+  const auto near = [](const std::optional<CoverageRegion>& r, const Eigen::Vector2d& centre) {
+    return r && (Eigen::Vector2d(r->region.cx, r->region.cy) - centre).norm() < 2.0;
+  };
+  int found = 0, found_without_tables = 0;
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const auto samples = Exposure(p, {4.0, 0.0, 1.0}, 1.0 / 60.0, 24);
+    scene.Render(samples, 1.0 + k / 60.0, 6000 + k);
+    scene.SmearChroma();
+    const Silhouette exact = Exact(scene.camera(), samples);
+    found +=
+        near(scene.Find(BallColour::Orange(), exact.centre, nullptr, with_tables), exact.centre);
+    found_without_tables += near(scene.Find(BallColour::Orange(), exact.centre), exact.centre);
+  }
+  std::printf("small smeared streak found in %d of 12 frames (%d without the tables)\n", found,
+              found_without_tables);
+  // Measured: 8 of 12 with the tables, 9 without (judging every covered pixel: 3 of 12).
+  EXPECT_GE(found_without_tables, 8);
+  EXPECT_GE(found, found_without_tables - 1);
 }
 
 TEST(ForegroundScene, ABallOfThreePixels) {
