@@ -10,6 +10,7 @@
 
 #include "p4/core/table.h"
 #include "p4/segment/background_model.h"
+#include "p4/segment/ball_edge.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/segment/colour_learning.h"
@@ -438,6 +439,96 @@ TEST(ForegroundScene, ColoursLearnedFromAFewFrames) {
     }
   }
   EXPECT_EQ(found, 6);
+}
+
+// The centre from the ball's edge (ball_edge.h), started from the colour tables' region (the
+// paper's centroid), against the exact projection: bias and spread over positions on the table.
+struct EdgeErrors {
+  double bias = 0.0, rms = 0.0, region_rms = 0.0;
+  int measured = 0, tries = 0;
+};
+
+EdgeErrors EdgeOver(Scene& scene, const Eigen::Vector3d& velocity, double exposure,
+                    bool smear_chroma = false) {
+  const ColorLut lut = DefaultOrangeBall().BuildLut();
+  SegmentOptions segment;
+  segment.mask = DefaultOrangeBall().MaskOf("ball");
+  BlobFinder blobs;
+  EdgeErrors out;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double e2 = 0.0, r2 = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const auto samples = Exposure(p, velocity, exposure, 24);
+    scene.Render(samples, 1.0 + k / 60.0, 7000 + k);
+    if (smear_chroma) scene.SmearChroma();
+    const Silhouette exact = Exact(scene.camera(), samples);
+    std::vector<Region> regions;
+    blobs.Find(scene.frame().View(), lut, {}, segment, &regions);
+    const Region* region = nullptr;
+    for (const Region& r : regions) {
+      if ((Eigen::Vector2d(r.cx, r.cy) - exact.centre).norm() < 3.0) region = &r;
+    }
+    ++out.tries;
+    if (!region) continue;
+    const auto e = MeasureEdgeCentre(scene.frame().View(), region->cx, region->cy,
+                                     0.5 * region->major_diameter + 0.5);
+    if (!e) continue;
+    ++out.measured;
+    const Eigen::Vector2d error = Eigen::Vector2d(e->cx, e->cy) - exact.centre;
+    sum += error, e2 += error.squaredNorm();
+    r2 += (Eigen::Vector2d(region->cx, region->cy) - exact.centre).squaredNorm();
+  }
+  if (out.measured == 0) return out;
+  out.bias = (sum / out.measured).norm();
+  out.rms = std::sqrt(e2 / out.measured);
+  out.region_rms = std::sqrt(r2 / out.measured);
+  std::printf(
+      "edge centre: bias %.3f px, rms %.3f px (the region's centroid: rms %.3f px), %d of "
+      "%d measured\n",
+      out.bias, out.rms, out.region_rms, out.measured, out.tries);
+  return out;
+}
+
+TEST(BallEdge, TheCentreOfASharpBallFromItsEdge) {
+  Scene scene(sim::ClubLook());
+  const EdgeErrors e = EdgeOver(scene, {0, 0, 0}, 0.0);
+  EXPECT_GE(e.measured, 11);
+  EXPECT_LE(e.bias, 0.1);
+  EXPECT_LE(e.rms, 0.2);
+}
+
+TEST(BallEdge, TheBottomHalfInShadow) {
+  // Lamps straight above and a dark table: the ball's dark bottom is close to the table's luma
+  // and colour, and its edge there is lost too. Measured: bias 0.91 px, rms 1.12 px against the
+  // region's 1.29 px (the 0.1 px target is not met: README, "Measured on many worlds").
+  Scene scene(sim::PresetLook("overhead"));
+  const EdgeErrors e = EdgeOver(scene, {0, 0, 0}, 0.0);
+  EXPECT_GE(e.measured, 10);
+  EXPECT_LT(e.rms, e.region_rms);
+}
+
+TEST(BallEdge, AStreakIsCentredAtMidExposure) {
+  // 1/300 s at 9 m/s: a streak of 3 cm, as in a hall's 2-4 ms exposures.
+  Scene scene(sim::ClubLook());
+  const EdgeErrors e = EdgeOver(scene, {9.0, 0.0, 1.0}, 1.0 / 300.0);
+  EXPECT_GE(e.measured, 10);
+  EXPECT_LE(e.bias, 0.15);
+  EXPECT_LE(e.rms, 0.25);
+  EXPECT_LT(e.rms, e.region_rms);
+  // A webcam's 1/60 s: a streak 4 times the ball, whose ends are ramps the noise moves: the
+  // edge mostly refuses it (measured: 9 of 12), and does no worse than the region.
+  const EdgeErrors webcam = EdgeOver(scene, {9.0, 0.0, 1.0}, 1.0 / 60.0);
+  EXPECT_LE(webcam.rms, webcam.region_rms);
+}
+
+TEST(BallEdge, ChromaTheEncoderSmearedDoesNotMoveTheCentre) {
+  // The tables take the part of the ball whose chroma is right; the edge is mostly in the luma.
+  Scene scene(sim::ClubLook());
+  const EdgeErrors e = EdgeOver(scene, {2.0, 0.0, 0.5}, 1.0 / 500.0, true);
+  EXPECT_GE(e.measured, 8);  // measured: 9 of 12
+  EXPECT_LE(e.rms, 0.2);
+  EXPECT_LT(e.rms, 0.5 * e.region_rms);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "p4/geometry/epipolar.h"
 #include "p4/geometry/sphere_depth.h"
 #include "p4/geometry/triangulation.h"
+#include "p4/segment/ball_edge.h"
 #include "p4/segment/ball_measure.h"
 
 namespace p4::track {
@@ -21,7 +22,8 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "ROI sizes: need 8 <= min <= max";
     return false;
   }
-  if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error)) {
+  if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
+      !edge.IsValid(error)) {
     return false;
   }
   if (threads < 1 || threads > 64) {
@@ -204,6 +206,15 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
         const double psf = options_.psf_sigma_px;
         d.diameter_px =
             std::sqrt(std::max(1.0, m->minor_diameter * m->minor_diameter - 16.0 * psf * psf));
+      }
+    }
+    if (options_.edge_centre) {
+      // The centre from the ball's edge in the luma (ball_edge.h): the region's centroid leans to
+      // where the encoder left the ball's chroma and to the lit half.
+      const double radius = 0.5 * std::max(r.major_diameter, d.diameter_px) + 0.5;
+      if (const auto e = segment::MeasureEdgeCentre(image, r.cx, r.cy, radius, options_.edge);
+          e && std::hypot(e->cx - r.cx, e->cy - r.cy) < 0.5 * d.diameter_px + 1.0) {
+        d.pixel = {e->cx, e->cy};
       }
     }
     out->push_back(d);

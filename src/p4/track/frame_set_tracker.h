@@ -20,6 +20,7 @@
 #include "p4/geometry/rig.h"
 #include "p4/geometry/triangulation.h"
 #include "p4/segment/background_model.h"
+#include "p4/segment/ball_edge.h"
 #include "p4/segment/ball_colour.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
@@ -60,6 +61,8 @@ struct FrameSetOptions {
   double diameter_sigma = 0.35;    // diameter noise, px (refined)
   double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
   bool refine = true;              // the diameter from luma coverage (MeasureBall)
+  bool edge_centre = true;         // the centre from the ball's edge in the luma (ball_edge.h)
+  segment::EdgeCentreOptions edge;
   // Beyond the paper: a background model per camera; once it is ready the ball is what differs
   // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
   // by its coverage of the pixels (centre at mid-exposure, area whatever the blur). The colour

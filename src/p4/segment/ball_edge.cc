@@ -1,0 +1,211 @@
+#include "p4/segment/ball_edge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "p4/segment/pixel_access.h"
+
+namespace p4::segment {
+namespace {
+
+// The colour at (x, y), bilinear: luma at full resolution, chroma from its half-resolution
+// samples (centred at 2i + 0.5, 2j + 0.5); false outside the image.
+bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
+  if (!(x >= 0.0 && y >= 0.0 && x <= image.width - 1.0 && y <= image.height - 1.0)) return false;
+  const int x0 = std::min(static_cast<int>(x), image.width - 2);
+  const int y0 = std::min(static_cast<int>(y), image.height - 2);
+  const double fx = x - x0, fy = y - y0;
+  const double a = internal::LumaAt(image, x0, y0), b = internal::LumaAt(image, x0 + 1, y0);
+  const double c = internal::LumaAt(image, x0, y0 + 1), d = internal::LumaAt(image, x0 + 1, y0 + 1);
+  out[0] = (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * d);
+  const int cw = image.width / 2, ch = image.height / 2;
+  const double sx = std::clamp((x - 0.5) / 2.0, 0.0, cw - 1.0);
+  const double sy = std::clamp((y - 0.5) / 2.0, 0.0, ch - 1.0);
+  const int i0 = std::min(static_cast<int>(sx), std::max(0, cw - 2));
+  const int j0 = std::min(static_cast<int>(sy), std::max(0, ch - 2));
+  const int i1 = std::min(i0 + 1, cw - 1), j1 = std::min(j0 + 1, ch - 1);
+  const double gx = sx - i0, gy = sy - j0;
+  uint8_t u[4] = {128, 128, 128, 128}, v[4] = {128, 128, 128, 128};
+  internal::ChromaAt(image, 2 * i0, 2 * j0, &u[0], &v[0]);
+  internal::ChromaAt(image, 2 * i1, 2 * j0, &u[1], &v[1]);
+  internal::ChromaAt(image, 2 * i0, 2 * j1, &u[2], &v[2]);
+  internal::ChromaAt(image, 2 * i1, 2 * j1, &u[3], &v[3]);
+  out[1] = (1.0 - gy) * ((1.0 - gx) * u[0] + gx * u[1]) + gy * ((1.0 - gx) * u[2] + gx * u[3]);
+  out[2] = (1.0 - gy) * ((1.0 - gx) * v[0] + gx * v[1]) + gy * ((1.0 - gx) * v[2] + gx * v[3]);
+  return true;
+}
+
+// Samples along a ray from (cx, cy): n colours (Y, U, V) at o.step_px apart. False when the
+// ray leaves the image.
+bool SampleRay(const ImageView& image, double cx, double cy, double ux, double uy, int n,
+               const EdgeCentreOptions& o, double* colours) {
+  for (int k = 0; k < n; ++k) {
+    const double r = k * o.step_px;
+    if (!ColourAt(image, cx + r * ux, cy + r * uy, colours + 3 * k)) return false;
+  }
+  return true;
+}
+
+double ColourDistance(const double* a, const double* b, double chroma_weight) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) +
+                   chroma_weight * ((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+}
+
+// Distance along a sampled ray to the ball's edge; negative when the ray finds none.
+// `background`: the colour beyond the ball on this ray. The profile is each sample's distance
+// from it in colour (luma where the ball is brighter or darker, chroma where a dark orange ball
+// and a blue table have the same luma).
+double EdgeOnRay(const double* colours, int n, const double* background, double radius,
+                 const EdgeCentreOptions& o, std::vector<double>* profile) {
+  profile->resize(static_cast<std::size_t>(n));
+  std::vector<double>& d = *profile;
+  for (int k = 0; k < n; ++k) {
+    d[static_cast<std::size_t>(k)] = ColourDistance(colours + 3 * k, background, o.chroma_weight);
+  }
+  const int inner_n = std::max(1, static_cast<int>(0.3 * radius / o.step_px));
+  double inner = 0.0;
+  for (int k = 0; k < inner_n; ++k) inner += d[static_cast<std::size_t>(k)];
+  if (inner / inner_n < o.min_contrast) return -1.0;
+  // The edge: where the distance has fallen halfway from the ball's, as it is just inside (w =
+  // 1.5 px back along the ray), to the background's. The ball's shading falls inside the disc
+  // slowly (less than half of what is left over w), so the dark half's edge is found where its
+  // own level meets the background, not where the lit half's level would put it; a line beyond
+  // the ball comes after the edge. A blur streak's ramp is crossed w before its end on both
+  // opposite rays alike: the centre stays unbiased.
+  const int back = std::max(1, static_cast<int>(std::lround(1.5 / o.step_px)));
+  const auto above_half = [&](int k) {
+    return d[static_cast<std::size_t>(k)] -
+           0.5 * d[static_cast<std::size_t>(std::max(0, k - back))];
+  };
+  double previous = above_half(inner_n - 1);
+  for (int k = inner_n; k < n; ++k) {
+    const double now = above_half(k);
+    if (now <= 0.0) {
+      const double f = previous > 0.0 ? previous / (previous - now) : 0.0;
+      return (k - 1 + f) * o.step_px;
+    }
+    previous = now;
+  }
+  return -1.0;
+}
+
+}  // namespace
+
+bool EdgeCentreOptions::IsValid(std::string* error) const {
+  if (directions < 8 || directions % 2 != 0 || !(step_px > 0.0 && step_px <= 1.0) ||
+      !(reach > 1.0) || !(reach_margin_px >= 1.0) || !(min_contrast >= 0.0) ||
+      !(max_pair_residual_px > 0.0) || !(min_pair_share > 0.0 && min_pair_share <= 1.0) ||
+      !(max_residual_px > 0.0) || !(chroma_weight >= 0.0) || iterations < 1) {
+    if (error) {
+      *error =
+          "edge centre: need an even number of >= 8 directions, a step in (0, 1] px, reach > 1, "
+          "a pair share in (0, 1], positive residual bounds";
+    }
+    return false;
+  }
+  return true;
+}
+
+std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, double cy,
+                                            double radius_px, const EdgeCentreOptions& o) {
+  const double radius = std::max(1.0, radius_px);
+  const int half = o.directions / 2;
+  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+  const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
+  std::vector<double> colours(static_cast<std::size_t>(3 * n * o.directions)), profile, ring;
+  std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
+  std::vector<double> d(static_cast<std::size_t>(half)), chord(d.size());
+  std::vector<uint8_t> use(d.size());
+  EdgeCentre out;
+  for (int iteration = 0; iteration < o.iterations; ++iteration) {
+    // Every ray's colours; the background is the ring beyond the ball: per channel the median of
+    // all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that
+    // one differs from the ring (a line or a shadow across some rays' ends is not their
+    // background).
+    ring.clear();
+    double median[3];
+    for (int r = 0; r < o.directions; ++r) {
+      const double a = 2.0 * M_PI * r / o.directions;
+      double* c = &colours[static_cast<std::size_t>(3 * n * r)];
+      sampled[static_cast<std::size_t>(r)] =
+          SampleRay(image, cx, cy, std::cos(a), std::sin(a), n, o, c);
+    }
+    for (int channel = 0; channel < 3; ++channel) {
+      ring.clear();
+      for (int r = 0; r < o.directions; ++r) {
+        if (!sampled[static_cast<std::size_t>(r)]) continue;
+        for (int k = n - tail; k < n; ++k) {
+          ring.push_back(colours[static_cast<std::size_t>(3 * (n * r + k) + channel)]);
+        }
+      }
+      if (ring.empty()) return std::nullopt;
+      std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
+      median[channel] = ring[ring.size() / 2];
+    }
+    const auto edge = [&](int r) {
+      if (!sampled[static_cast<std::size_t>(r)]) return -1.0;
+      const double* c = &colours[static_cast<std::size_t>(3 * n * r)];
+      const double* background = c + 3 * (n - 1);
+      for (int k = n - tail; k < n; ++k) {
+        if (ColourDistance(c + 3 * k, median, o.chroma_weight) <
+            ColourDistance(background, median, o.chroma_weight)) {
+          background = c + 3 * k;
+        }
+      }
+      // A ray whose end lies on something else (a line, a shadow) takes the ring's colour.
+      if (ColourDistance(background, median, o.chroma_weight) > o.min_contrast) background = median;
+      return EdgeOnRay(c, n, background, radius, o, &profile);
+    };
+    for (int i = 0; i < half; ++i) {
+      const double r1 = edge(i), r2 = edge(i + half);
+      const auto j = static_cast<std::size_t>(i);
+      use[j] = r1 > 0.0 && r2 > 0.0;
+      d[j] = 0.5 * (r1 - r2);  // the centre's offset along the ray
+      chord[j] = r1 + r2;
+    }
+    // d_i = offset . u_i by least squares, dropping pairs far from the fit.
+    double ox = 0.0, oy = 0.0;
+    int pairs = 0;
+    double residual = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      double sxx = 0.0, sxy = 0.0, syy = 0.0, bx = 0.0, by = 0.0;
+      for (int i = 0; i < half; ++i) {
+        const auto j = static_cast<std::size_t>(i);
+        if (!use[j]) continue;
+        const double a = M_PI * i / half, ux = std::cos(a), uy = std::sin(a);
+        sxx += ux * ux, sxy += ux * uy, syy += uy * uy, bx += d[j] * ux, by += d[j] * uy;
+      }
+      const double det = sxx * syy - sxy * sxy;
+      if (!(det > 1e-6)) return std::nullopt;
+      ox = (syy * bx - sxy * by) / det;
+      oy = (sxx * by - sxy * bx) / det;
+      pairs = 0;
+      residual = 0.0;
+      for (int i = 0; i < half; ++i) {
+        const auto j = static_cast<std::size_t>(i);
+        if (!use[j]) continue;
+        const double a = M_PI * i / half;
+        const double e = d[j] - (ox * std::cos(a) + oy * std::sin(a));
+        if (pass == 0 && std::abs(e) > o.max_pair_residual_px) {
+          use[j] = 0;
+          continue;
+        }
+        ++pairs, residual += e * e;
+      }
+    }
+    if (pairs < std::max(3.0, o.min_pair_share * half)) return std::nullopt;
+    cx += ox, cy += oy;
+    out.pairs = pairs;
+    out.residual_px = std::sqrt(residual / pairs);
+    if (out.residual_px > o.max_residual_px) return std::nullopt;
+    out.min_width_px = 1e9;
+    for (std::size_t j = 0; j < chord.size(); ++j) {
+      if (use[j]) out.min_width_px = std::min(out.min_width_px, chord[j]);
+    }
+  }
+  out.cx = cx, out.cy = cy;
+  return out;
+}
+
+}  // namespace p4::segment

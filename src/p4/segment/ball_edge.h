@@ -1,0 +1,60 @@
+// The ball's centre from its edge (beyond the paper, whose centre is the colour region's
+// centroid, §3.1). The colour tables take the part of the ball whose chroma the encoder left
+// right (H.264 smears chroma over 4x4 and 8x8 blocks: half a small ball can carry the wall's
+// chroma) and a luma-weighted centroid leans to the lit half; both move the centre by up to a
+// pixel, which the epipolar check and the depth do not forgive.
+//
+// The edge is where the luma falls from the ball's to the background's, found on rays from a
+// first guess of the centre: on each ray the outward fall's weighted mean position (a sharp edge:
+// its steepest point; a motion-blurred edge, a ramp: its middle, the edge at mid-exposure). The
+// ball's shading changes the luma slowly inside the disc and does not move the edge. A disc, an
+// ellipse and a blur streak are all centrally symmetric, so the edges of opposite rays are as
+// far from the true centre: half their difference, over all pairs, gives the centre's offset by
+// least squares. Pairs that do not agree (a ray that ran into a line, a shadow, another ball) are
+// dropped and the rays cast again from the new centre.
+//
+// Luma only (full resolution, not smeared by the encoder). Pixel coordinates: centres at
+// integers. Pure.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "p4/core/image.h"
+
+namespace p4::segment {
+
+struct EdgeCentreOptions {
+  int directions = 32;           // rays, in opposite pairs (even)
+  double step_px = 0.25;         // sampling step along a ray
+  double reach = 1.6;            // a ray runs to reach x the radius guess...
+  double reach_margin_px = 3.0;  // ...plus this (the background beyond the edge)
+  double min_contrast = 12.0;    // the ball's colour distance from the background, 8-bit levels
+  double chroma_weight = 0.25;   // of U and V against Y in that distance (squared)
+  double max_pair_residual_px = 0.6;  // a pair further than this from the fit is dropped
+  // The fit holds when this share of the pairs agree, to max_residual_px RMS (a ray that ran
+  // into a line or a shadow is one pair; a window where a quarter disagree is not a ball's edge).
+  double min_pair_share = 0.75;
+  double max_residual_px = 0.4;
+  int iterations = 2;  // rays cast again from the centre found
+
+  bool IsValid(std::string* error) const;
+};
+
+struct EdgeCentre {
+  double cx = 0.0, cy = 0.0;  // the shape's centre (mid-exposure for a streak), px
+  double min_width_px = 0.0;  // the narrowest chord between opposite edges (the ball's diameter
+                              // across a streak)
+  int pairs = 0;              // opposite rays that agreed
+  double residual_px = 0.0;   // RMS of their half-differences about the fit
+};
+
+// `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a
+// radius; `radius_px`: the ball's radius guess (half the region's major axis for a streak).
+// nullopt when too few opposite rays find an edge that agrees (too little contrast, the ball at
+// the image border, a crowded window). Precondition: options valid.
+std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, double cy,
+                                            double radius_px,
+                                            const EdgeCentreOptions& options = {});
+
+}  // namespace p4::segment
