@@ -13,6 +13,28 @@ namespace {
 // samples (centred at 2i + 0.5, 2j + 0.5); false outside the image.
 bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   if (!(x >= 0.0 && y >= 0.0 && x <= image.width - 1.0 && y <= image.height - 1.0)) return false;
+  if (image.format == PixelFormat::kI420 && image.width >= 4 && image.height >= 4) {
+    // The cameras' and the files' own format: the planes read directly.
+    const int x0 = std::min(static_cast<int>(x), image.width - 2);
+    const int y0 = std::min(static_cast<int>(y), image.height - 2);
+    const double fx = x - x0, fy = y - y0;
+    const uint8_t* r0 = image.planes[0].Row(y0) + x0;
+    const uint8_t* r1 = image.planes[0].Row(y0 + 1) + x0;
+    out[0] =
+        (1.0 - fy) * ((1.0 - fx) * r0[0] + fx * r0[1]) + fy * ((1.0 - fx) * r1[0] + fx * r1[1]);
+    const double sx = std::clamp((x - 0.5) * 0.5, 0.0, image.width / 2 - 1.0);
+    const double sy = std::clamp((y - 0.5) * 0.5, 0.0, image.height / 2 - 1.0);
+    const int i0 = std::min(static_cast<int>(sx), image.width / 2 - 2);
+    const int j0 = std::min(static_cast<int>(sy), image.height / 2 - 2);
+    const double gx = sx - i0, gy = sy - j0;
+    for (int c = 1; c <= 2; ++c) {
+      const uint8_t* c0 = image.planes[c].Row(j0) + i0;
+      const uint8_t* c1 = image.planes[c].Row(j0 + 1) + i0;
+      out[c] =
+          (1.0 - gy) * ((1.0 - gx) * c0[0] + gx * c0[1]) + gy * ((1.0 - gx) * c1[0] + gx * c1[1]);
+    }
+    return true;
+  }
   const int x0 = std::min(static_cast<int>(x), image.width - 2);
   const int y0 = std::min(static_cast<int>(y), image.height - 2);
   const double fx = x - x0, fy = y - y0;
@@ -117,6 +139,12 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
   std::vector<double> d(static_cast<std::size_t>(half)), chord(d.size());
   std::vector<uint8_t> use(d.size());
+  // The rays' directions: i and i + half are opposite.
+  std::vector<double> ux(static_cast<std::size_t>(o.directions)), uy(ux.size());
+  for (int r = 0; r < o.directions; ++r) {
+    const double a = 2.0 * M_PI * r / o.directions;
+    ux[static_cast<std::size_t>(r)] = std::cos(a), uy[static_cast<std::size_t>(r)] = std::sin(a);
+  }
   EdgeCentre out;
   for (int iteration = 0; iteration < o.iterations; ++iteration) {
     // Every ray's colours; the background is the ring beyond the ball: per channel the median of
@@ -126,10 +154,8 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     ring.clear();
     double median[3];
     for (int r = 0; r < o.directions; ++r) {
-      const double a = 2.0 * M_PI * r / o.directions;
-      double* c = &colours[static_cast<std::size_t>(3 * n * r)];
-      sampled[static_cast<std::size_t>(r)] =
-          SampleRay(image, cx, cy, std::cos(a), std::sin(a), n, o, c);
+      const auto j = static_cast<std::size_t>(r);
+      sampled[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &colours[3 * n * j]);
     }
     for (int channel = 0; channel < 3; ++channel) {
       ring.clear();
@@ -173,8 +199,8 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       for (int i = 0; i < half; ++i) {
         const auto j = static_cast<std::size_t>(i);
         if (!use[j]) continue;
-        const double a = M_PI * i / half, ux = std::cos(a), uy = std::sin(a);
-        sxx += ux * ux, sxy += ux * uy, syy += uy * uy, bx += d[j] * ux, by += d[j] * uy;
+        sxx += ux[j] * ux[j], sxy += ux[j] * uy[j], syy += uy[j] * uy[j];
+        bx += d[j] * ux[j], by += d[j] * uy[j];
       }
       const double det = sxx * syy - sxy * sxy;
       if (!(det > 1e-6)) return std::nullopt;
@@ -185,8 +211,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       for (int i = 0; i < half; ++i) {
         const auto j = static_cast<std::size_t>(i);
         if (!use[j]) continue;
-        const double a = M_PI * i / half;
-        const double e = d[j] - (ox * std::cos(a) + oy * std::sin(a));
+        const double e = d[j] - (ox * ux[j] + oy * uy[j]);
         if (pass == 0 && std::abs(e) > o.max_pair_residual_px) {
           use[j] = 0;
           continue;
@@ -203,6 +228,8 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     for (std::size_t j = 0; j < chord.size(); ++j) {
       if (use[j]) out.min_width_px = std::min(out.min_width_px, chord[j]);
     }
+    // Rays cast again only when the centre moved enough to change where they cross the edge.
+    if (std::hypot(ox, oy) < o.settled_px) break;
   }
   out.cx = cx, out.cy = cy;
   return out;

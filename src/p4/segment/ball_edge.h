@@ -11,7 +11,8 @@
 // ellipse and a blur streak are all centrally symmetric, so the edges of opposite rays are as
 // far from the true centre: half their difference, over all pairs, gives the centre's offset by
 // least squares. Pairs that do not agree (a ray that ran into a line, a shadow, another ball) are
-// dropped and the rays cast again from the new centre.
+// dropped and the rays cast again from the new centre. For a disc or a short streak (up to
+// about twice as long as wide: a long streak's ends are ramps whose crossings noise moves).
 //
 // Luma only (full resolution, not smeared by the encoder). Pixel coordinates: centres at
 // integers. Pure.
@@ -25,10 +26,10 @@
 namespace p4::segment {
 
 struct EdgeCentreOptions {
-  int directions = 32;           // rays, in opposite pairs (even)
-  double step_px = 0.25;         // sampling step along a ray
-  double reach = 1.6;            // a ray runs to reach x the radius guess...
-  double reach_margin_px = 3.0;  // ...plus this (the background beyond the edge)
+  int directions = 12;           // rays, in opposite pairs (even)
+  double step_px = 0.75;         // sampling step along a ray
+  double reach = 1.4;            // a ray runs to reach x the radius guess...
+  double reach_margin_px = 2.5;  // ...plus this (the background beyond the edge)
   double min_contrast = 12.0;    // the ball's colour distance from the background, 8-bit levels
   double chroma_weight = 0.25;   // of U and V against Y in that distance (squared)
   double max_pair_residual_px = 0.6;  // a pair further than this from the fit is dropped
@@ -36,7 +37,8 @@ struct EdgeCentreOptions {
   // into a line or a shadow is one pair; a window where a quarter disagree is not a ball's edge).
   double min_pair_share = 0.75;
   double max_residual_px = 0.4;
-  int iterations = 2;  // rays cast again from the centre found
+  int iterations = 2;        // rays cast again from the centre found...
+  double settled_px = 0.25;  // ...unless it moved less than this
 
   bool IsValid(std::string* error) const;
 };

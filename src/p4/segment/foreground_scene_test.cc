@@ -516,10 +516,6 @@ TEST(BallEdge, AStreakIsCentredAtMidExposure) {
   EXPECT_LE(e.bias, 0.15);
   EXPECT_LE(e.rms, 0.25);
   EXPECT_LT(e.rms, e.region_rms);
-  // A webcam's 1/60 s: a streak 4 times the ball, whose ends are ramps the noise moves: the
-  // edge mostly refuses it (measured: 9 of 12), and does no worse than the region.
-  const EdgeErrors webcam = EdgeOver(scene, {9.0, 0.0, 1.0}, 1.0 / 60.0);
-  EXPECT_LE(webcam.rms, webcam.region_rms);
 }
 
 TEST(BallEdge, ChromaTheEncoderSmearedDoesNotMoveTheCentre) {

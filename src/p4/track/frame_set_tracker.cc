@@ -208,7 +208,9 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
             std::sqrt(std::max(1.0, m->minor_diameter * m->minor_diameter - 16.0 * psf * psf));
       }
     }
-    if (options_.edge_centre) {
+    // A long streak's ends are ramps whose crossings the noise moves: its centroid stays.
+    if (options_.edge_centre &&
+        r.major_diameter <= options_.edge_max_elongation * std::max(1.0, r.minor_diameter)) {
       // The centre from the ball's edge in the luma (ball_edge.h): the region's centroid leans to
       // where the encoder left the ball's chroma and to the lit half.
       const double radius = 0.5 * std::max(r.major_diameter, d.diameter_px) + 0.5;

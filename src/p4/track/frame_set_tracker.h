@@ -20,8 +20,8 @@
 #include "p4/geometry/rig.h"
 #include "p4/geometry/triangulation.h"
 #include "p4/segment/background_model.h"
-#include "p4/segment/ball_edge.h"
 #include "p4/segment/ball_colour.h"
+#include "p4/segment/ball_edge.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/segment/foreground_finder.h"
@@ -57,11 +57,12 @@ struct FrameSetOptions {
   int roi_min_px = 40;   // the paper's fixed 40 px window...
   int roi_max_px = 240;  // ...grown with the predicted ball size and speed
   bool single_camera_fallback = true;
-  double pixel_sigma = 0.5;        // centroid noise, px (for measurement covariances)
-  double diameter_sigma = 0.35;    // diameter noise, px (refined)
-  double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
-  bool refine = true;              // the diameter from luma coverage (MeasureBall)
-  bool edge_centre = true;         // the centre from the ball's edge in the luma (ball_edge.h)
+  double pixel_sigma = 0.5;          // centroid noise, px (for measurement covariances)
+  double diameter_sigma = 0.35;      // diameter noise, px (refined)
+  double diameter_bias_px = 0.65;    // the binary region is this much narrower than the ball
+  bool refine = true;                // the diameter from luma coverage (MeasureBall)
+  bool edge_centre = true;           // the centre from the ball's edge (ball_edge.h)...
+  double edge_max_elongation = 2.5;  // ...for views at most this much longer than wide
   segment::EdgeCentreOptions edge;
   // Beyond the paper: a background model per camera; once it is ready the ball is what differs
   // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
