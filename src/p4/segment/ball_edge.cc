@@ -15,6 +15,7 @@ bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   if (!(x >= 0.0 && y >= 0.0 && x <= image.width - 1.0 && y <= image.height - 1.0)) return false;
   if (image.format == PixelFormat::kI420 && image.width >= 4 && image.height >= 4) {
     // The cameras' and the files' own format: the planes read directly.
+    const int chroma_width = image.width / 2, chroma_height = image.height / 2;  // whole samples
     const int x0 = std::min(static_cast<int>(x), image.width - 2);
     const int y0 = std::min(static_cast<int>(y), image.height - 2);
     const double fx = x - x0, fy = y - y0;
@@ -22,10 +23,10 @@ bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
     const uint8_t* r1 = image.planes[0].Row(y0 + 1) + x0;
     out[0] =
         (1.0 - fy) * ((1.0 - fx) * r0[0] + fx * r0[1]) + fy * ((1.0 - fx) * r1[0] + fx * r1[1]);
-    const double sx = std::clamp((x - 0.5) * 0.5, 0.0, image.width / 2 - 1.0);
-    const double sy = std::clamp((y - 0.5) * 0.5, 0.0, image.height / 2 - 1.0);
-    const int i0 = std::min(static_cast<int>(sx), image.width / 2 - 2);
-    const int j0 = std::min(static_cast<int>(sy), image.height / 2 - 2);
+    const double sx = std::clamp((x - 0.5) * 0.5, 0.0, chroma_width - 1.0);
+    const double sy = std::clamp((y - 0.5) * 0.5, 0.0, chroma_height - 1.0);
+    const int i0 = std::min(static_cast<int>(sx), chroma_width - 2);
+    const int j0 = std::min(static_cast<int>(sy), chroma_height - 2);
     const double gx = sx - i0, gy = sy - j0;
     for (int c = 1; c <= 2; ++c) {
       const uint8_t* c0 = image.planes[c].Row(j0) + i0;
@@ -135,7 +136,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const int half = o.directions / 2;
   const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
   const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
-  std::vector<double> colours(static_cast<std::size_t>(3 * n * o.directions)), profile, ring;
+  std::vector<double> colours(3 * static_cast<std::size_t>(n) * o.directions), profile, ring;
   std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
   std::vector<double> d(static_cast<std::size_t>(half)), chord(d.size());
   std::vector<uint8_t> use(d.size());
@@ -162,7 +163,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       for (int r = 0; r < o.directions; ++r) {
         if (!sampled[static_cast<std::size_t>(r)]) continue;
         for (int k = n - tail; k < n; ++k) {
-          ring.push_back(colours[static_cast<std::size_t>(3 * (n * r + k) + channel)]);
+          ring.push_back(colours[3 * (static_cast<std::size_t>(n) * r + k) + channel]);
         }
       }
       if (ring.empty()) return std::nullopt;
@@ -171,7 +172,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     }
     const auto edge = [&](int r) {
       if (!sampled[static_cast<std::size_t>(r)]) return -1.0;
-      const double* c = &colours[static_cast<std::size_t>(3 * n * r)];
+      const double* c = &colours[3 * static_cast<std::size_t>(n) * r];
       const double* background = c + 3 * (n - 1);
       for (int k = n - tail; k < n; ++k) {
         if (ColourDistance(c + 3 * k, median, o.chroma_weight) <
