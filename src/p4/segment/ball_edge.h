@@ -4,18 +4,20 @@
 // chroma) and a luma-weighted centroid leans to the lit half; both move the centre by up to a
 // pixel, which the epipolar check and the depth do not forgive.
 //
-// The edge is where the luma falls from the ball's to the background's, found on rays from a
-// first guess of the centre: on each ray the outward fall's weighted mean position (a sharp edge:
-// its steepest point; a motion-blurred edge, a ramp: its middle, the edge at mid-exposure). The
-// ball's shading changes the luma slowly inside the disc and does not move the edge. A disc, an
-// ellipse and a blur streak are all centrally symmetric, so the edges of opposite rays are as
-// far from the true centre: half their difference, over all pairs, gives the centre's offset by
-// least squares. Pairs that do not agree (a ray that ran into a line, a shadow, another ball) are
-// dropped and the rays cast again from the new centre. For a disc or a short streak (up to
-// about twice as long as wide: a long streak's ends are ramps whose crossings noise moves).
+// Rays from a first guess of the centre sample the colour (luma; chroma at a quarter weight, for
+// a dark orange ball on a blue table that differs in chroma only). The background is the ring
+// beyond the ball (per channel the median of the rays' ends; a ray ending on a line or a shadow
+// takes the ring's colour). On each ray the edge is where the colour distance from the
+// background has fallen to half of its value 1.5 px further in: the ball's shading changes the
+// colour slowly inside the disc, so the dark half's edge is where its own level meets the
+// background, and a line beyond the ball comes after the edge. A disc, an ellipse and a short
+// blur streak are centrally symmetric, so the edges of opposite rays are as far from the true
+// centre: half their difference, over all pairs, gives the centre's offset by least squares.
+// Pairs that do not agree (a ray that ran into a line, a shadow, another ball) are dropped and
+// the rays cast again from the new centre. For a disc or a short streak (up to about twice as
+// long as wide: a long streak's ends are ramps whose crossings the noise moves).
 //
-// Luma only (full resolution, not smeared by the encoder). Pixel coordinates: centres at
-// integers. Pure.
+// Pixel coordinates: centres at integers. Pure.
 #pragma once
 
 #include <optional>

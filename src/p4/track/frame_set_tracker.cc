@@ -211,8 +211,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     // A long streak's ends are ramps whose crossings the noise moves: its centroid stays.
     if (options_.edge_centre &&
         r.major_diameter <= options_.edge_max_elongation * std::max(1.0, r.minor_diameter)) {
-      // The centre from the ball's edge in the luma (ball_edge.h): the region's centroid leans to
-      // where the encoder left the ball's chroma and to the lit half.
+      // The centre from the ball's edge (ball_edge.h): the region's centroid leans to where the
+      // encoder left the ball's chroma and to the lit half.
       const double radius = 0.5 * std::max(r.major_diameter, d.diameter_px) + 0.5;
       if (const auto e = segment::MeasureEdgeCentre(image, r.cx, r.cy, radius, options_.edge);
           e && std::hypot(e->cx - r.cx, e->cy - r.cy) < 0.5 * d.diameter_px + 1.0) {
