@@ -9,53 +9,32 @@
 namespace p4::segment {
 namespace {
 
+double Bilinear(double a, double b, double c, double d, double fx, double fy) {
+  return (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * d);
+}
+
 // The colour at (x, y), bilinear: luma at full resolution, chroma from its half-resolution
 // samples (centred at 2i + 0.5, 2j + 0.5); false outside the image.
 bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   if (!(x >= 0.0 && y >= 0.0 && x <= image.width - 1.0 && y <= image.height - 1.0)) return false;
-  if (image.format == PixelFormat::kI420 && image.width >= 4 && image.height >= 4) {
-    // The cameras' and the files' own format: the planes read directly.
-    const int chroma_width = image.width / 2, chroma_height = image.height / 2;  // whole samples
-    const int x0 = std::min(static_cast<int>(x), image.width - 2);
-    const int y0 = std::min(static_cast<int>(y), image.height - 2);
-    const double fx = x - x0, fy = y - y0;
-    const uint8_t* r0 = image.planes[0].Row(y0) + x0;
-    const uint8_t* r1 = image.planes[0].Row(y0 + 1) + x0;
-    out[0] =
-        (1.0 - fy) * ((1.0 - fx) * r0[0] + fx * r0[1]) + fy * ((1.0 - fx) * r1[0] + fx * r1[1]);
-    const double sx = std::clamp((x - 0.5) * 0.5, 0.0, chroma_width - 1.0);
-    const double sy = std::clamp((y - 0.5) * 0.5, 0.0, chroma_height - 1.0);
-    const int i0 = std::min(static_cast<int>(sx), chroma_width - 2);
-    const int j0 = std::min(static_cast<int>(sy), chroma_height - 2);
-    const double gx = sx - i0, gy = sy - j0;
-    for (int c = 1; c <= 2; ++c) {
-      const uint8_t* c0 = image.planes[c].Row(j0) + i0;
-      const uint8_t* c1 = image.planes[c].Row(j0 + 1) + i0;
-      out[c] =
-          (1.0 - gy) * ((1.0 - gx) * c0[0] + gx * c0[1]) + gy * ((1.0 - gx) * c1[0] + gx * c1[1]);
-    }
-    return true;
-  }
   const int x0 = std::min(static_cast<int>(x), image.width - 2);
   const int y0 = std::min(static_cast<int>(y), image.height - 2);
-  const double fx = x - x0, fy = y - y0;
-  const double a = internal::LumaAt(image, x0, y0), b = internal::LumaAt(image, x0 + 1, y0);
-  const double c = internal::LumaAt(image, x0, y0 + 1), d = internal::LumaAt(image, x0 + 1, y0 + 1);
-  out[0] = (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * d);
-  const int cw = image.width / 2, ch = image.height / 2;
+  out[0] = Bilinear(internal::LumaAt(image, x0, y0), internal::LumaAt(image, x0 + 1, y0),
+                    internal::LumaAt(image, x0, y0 + 1), internal::LumaAt(image, x0 + 1, y0 + 1),
+                    x - x0, y - y0);
+  const int cw = image.width / 2, ch = image.height / 2;  // whole chroma samples
   const double sx = std::clamp((x - 0.5) / 2.0, 0.0, cw - 1.0);
   const double sy = std::clamp((y - 0.5) / 2.0, 0.0, ch - 1.0);
   const int i0 = std::min(static_cast<int>(sx), std::max(0, cw - 2));
   const int j0 = std::min(static_cast<int>(sy), std::max(0, ch - 2));
   const int i1 = std::min(i0 + 1, cw - 1), j1 = std::min(j0 + 1, ch - 1);
-  const double gx = sx - i0, gy = sy - j0;
   uint8_t u[4] = {128, 128, 128, 128}, v[4] = {128, 128, 128, 128};
   internal::ChromaAt(image, 2 * i0, 2 * j0, &u[0], &v[0]);
   internal::ChromaAt(image, 2 * i1, 2 * j0, &u[1], &v[1]);
   internal::ChromaAt(image, 2 * i0, 2 * j1, &u[2], &v[2]);
   internal::ChromaAt(image, 2 * i1, 2 * j1, &u[3], &v[3]);
-  out[1] = (1.0 - gy) * ((1.0 - gx) * u[0] + gx * u[1]) + gy * ((1.0 - gx) * u[2] + gx * u[3]);
-  out[2] = (1.0 - gy) * ((1.0 - gx) * v[0] + gx * v[1]) + gy * ((1.0 - gx) * v[2] + gx * v[3]);
+  out[1] = Bilinear(u[0], u[1], u[2], u[3], sx - i0, sy - j0);
+  out[2] = Bilinear(v[0], v[1], v[2], v[3], sx - i0, sy - j0);
   return true;
 }
 
@@ -119,11 +98,12 @@ bool EdgeCentreOptions::IsValid(std::string* error) const {
   if (directions < 8 || directions % 2 != 0 || !(step_px > 0.0 && step_px <= 1.0) ||
       !(reach > 1.0) || !(reach_margin_px >= 1.0) || !(min_contrast >= 0.0) ||
       !(max_pair_residual_px > 0.0) || !(min_pair_share > 0.0 && min_pair_share <= 1.0) ||
-      !(max_residual_px > 0.0) || !(chroma_weight >= 0.0) || iterations < 1) {
+      !(max_residual_px > 0.0) || !(chroma_weight >= 0.0) || iterations < 1 ||
+      !(settled_px >= 0.0)) {
     if (error) {
       *error =
           "edge centre: need an even number of >= 8 directions, a step in (0, 1] px, reach > 1, "
-          "a pair share in (0, 1], positive residual bounds";
+          "a pair share in (0, 1], positive residual bounds, iterations >= 1, settled >= 0";
     }
     return false;
   }
@@ -138,7 +118,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
   std::vector<double> colours(3 * static_cast<std::size_t>(n) * o.directions), profile, ring;
   std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
-  std::vector<double> d(static_cast<std::size_t>(half)), chord(d.size());
+  std::vector<double> d(static_cast<std::size_t>(half));
   std::vector<uint8_t> use(d.size());
   // The rays' directions: i and i + half are opposite.
   std::vector<double> ux(static_cast<std::size_t>(o.directions)), uy(ux.size());
@@ -174,14 +154,13 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       if (!sampled[static_cast<std::size_t>(r)]) return -1.0;
       const double* c = &colours[3 * static_cast<std::size_t>(n) * r];
       const double* background = c + 3 * (n - 1);
-      for (int k = n - tail; k < n; ++k) {
-        if (ColourDistance(c + 3 * k, median, o.chroma_weight) <
-            ColourDistance(background, median, o.chroma_weight)) {
-          background = c + 3 * k;
-        }
+      double nearest = ColourDistance(background, median, o.chroma_weight);
+      for (int k = n - tail; k < n - 1; ++k) {
+        const double distance = ColourDistance(c + 3 * k, median, o.chroma_weight);
+        if (distance < nearest) background = c + 3 * k, nearest = distance;
       }
       // A ray whose end lies on something else (a line, a shadow) takes the ring's colour.
-      if (ColourDistance(background, median, o.chroma_weight) > o.min_contrast) background = median;
+      if (nearest > o.min_contrast) background = median;
       return EdgeOnRay(c, n, background, radius, o, &profile);
     };
     for (int i = 0; i < half; ++i) {
@@ -189,7 +168,6 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       const auto j = static_cast<std::size_t>(i);
       use[j] = r1 > 0.0 && r2 > 0.0;
       d[j] = 0.5 * (r1 - r2);  // the centre's offset along the ray
-      chord[j] = r1 + r2;
     }
     // d_i = offset . u_i by least squares, dropping pairs far from the fit.
     double ox = 0.0, oy = 0.0;
@@ -225,10 +203,6 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     out.pairs = pairs;
     out.residual_px = std::sqrt(residual / pairs);
     if (out.residual_px > o.max_residual_px) return std::nullopt;
-    out.min_width_px = 1e9;
-    for (std::size_t j = 0; j < chord.size(); ++j) {
-      if (use[j]) out.min_width_px = std::min(out.min_width_px, chord[j]);
-    }
     // Rays cast again only when the centre moved enough to change where they cross the edge.
     if (std::hypot(ox, oy) < o.settled_px) break;
   }

@@ -47,8 +47,6 @@ struct EdgeCentreOptions {
 
 struct EdgeCentre {
   double cx = 0.0, cy = 0.0;  // the shape's centre (mid-exposure for a streak), px
-  double min_width_px = 0.0;  // the narrowest chord between opposite edges (the ball's diameter
-                              // across a streak)
   int pairs = 0;              // opposite rays that agreed
   double residual_px = 0.0;   // RMS of their half-differences about the fit
 };

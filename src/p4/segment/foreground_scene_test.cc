@@ -144,6 +144,9 @@ std::vector<Eigen::Vector3d> Exposure(const Eigen::Vector3d& p, const Eigen::Vec
   return out;
 }
 
+// The k-th of the 12 places over the table the measures are taken at.
+Eigen::Vector3d Place(int k) { return {-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5)}; }
+
 struct Errors {
   Eigen::Vector2d centre{1e9, 1e9};  // measured - exact, px
   double diameter_px = 1e9;          // measured - exact (diameter of equal area)
@@ -180,7 +183,7 @@ Bias BiasOver(Scene& scene, const BallColour& ball, const Eigen::Vector3d& veloc
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   double dsum = 0.0, c2 = 0.0, d2 = 0.0;
   for (int k = 0; k < 12; ++k) {
-    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const Eigen::Vector3d p = Place(k);
     const Errors e =
         Measure(scene, ball, Exposure(p, velocity, exposure, 24), 1.0 + k / 60.0, 999 + k);
     ++bias.tries;
@@ -265,7 +268,7 @@ TEST(ForegroundScene, ASmallStreakWhoseChromaTheEncoderSmearedIsStillTheBall) {
   };
   int found = 0, found_without_tables = 0;
   for (int k = 0; k < 12; ++k) {
-    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const Eigen::Vector3d p = Place(k);
     const auto samples = Exposure(p, {4.0, 0.0, 1.0}, 1.0 / 60.0, 24);
     scene.Render(samples, 1.0 + k / 60.0, 6000 + k);
     scene.SmearChroma();
@@ -458,7 +461,7 @@ EdgeErrors EdgeOver(Scene& scene, const Eigen::Vector3d& velocity, double exposu
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   double e2 = 0.0, r2 = 0.0;
   for (int k = 0; k < 12; ++k) {
-    const Eigen::Vector3d p(-1.0 + 0.18 * k, 0.5 * std::sin(k), 0.2 + 0.03 * (k % 5));
+    const Eigen::Vector3d p = Place(k);
     const auto samples = Exposure(p, velocity, exposure, 24);
     scene.Render(samples, 1.0 + k / 60.0, 7000 + k);
     if (smear_chroma) scene.SmearChroma();
