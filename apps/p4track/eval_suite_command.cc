@@ -34,7 +34,7 @@ struct SuiteArgs {
   int scenes = 4;
   int first = 1;
   bool keep = false;
-  std::string ball = "hint";
+  std::string ball = "auto";
   std::vector<std::string> track_args;
 };
 
@@ -279,8 +279,8 @@ std::function<int()> AddEvalSuiteCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--keep", args->keep, "Keep the rendered videos (deleted after each scene)");
   cmd->add_option("--ball", args->ball,
-                  "hint: track with the scene's ball colour named (--ball orange|white|yellow); "
-                  "auto: with --ball auto (the colour learnt from the scene)")
+                  "auto: track as `track` does by default (--ball auto: the colour learnt from the "
+                  "scene); hint: with the scene's ball colour named (--ball orange|white|yellow)")
       ->check(CLI::IsMember({"hint", "auto"}))
       ->capture_default_str();
   cmd->add_option("--track-args", args->track_args,

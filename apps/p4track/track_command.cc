@@ -1,6 +1,7 @@
 // p4track track: the tracker over recorded or live sources (paper §3), writing the run's files.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 
@@ -19,7 +20,7 @@ namespace p4::app {
 namespace {
 
 struct TrackArgs {
-  std::string rig, out, classes, ball = "orange", filter = "p4";
+  std::string rig, out, classes, ball = "auto", filter = "p4";
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false, no_smoothing = false, no_confirm = false;
   std::string detector = "auto";
@@ -34,29 +35,38 @@ struct TrackArgs {
   WebFlags web;
 };
 
+// The colour classes of a named ball (orange for "auto", the hint when nothing can be learnt).
+segment::ColorClassSet NamedClasses(const std::string& ball) {
+  return ball == "white"    ? segment::DefaultWhiteBall()
+         : ball == "yellow" ? segment::DefaultYellowBall()
+                            : segment::DefaultOrangeBall();
+}
+
 int Run(const TrackArgs& a) {
   const Rig rig = ReadRig(a.rig);
-  const bool learn = a.classes.empty() && a.ball == "auto";
-  segment::ColorClassSet classes = !a.classes.empty()
-                                       ? ReadColorClasses(a.classes)
-                                       : (a.ball == "white"    ? segment::DefaultWhiteBall()
-                                          : a.ball == "yellow" ? segment::DefaultYellowBall()
-                                                               : segment::DefaultOrangeBall());
+  bool learn = a.classes.empty() && a.ball == "auto";
+  segment::ColorClassSet classes =
+      !a.classes.empty() ? ReadColorClasses(a.classes) : NamedClasses(a.ball);
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
-    if (learn && VideoReader::IsLive(s)) {
-      throw Error(s + ": --ball auto learns the ball's colour from recordings (it reads their " +
-                  "first seconds twice); record a rally and learn from it (its folder gets " +
-                  "ball_classes.yaml, for --classes), or give --ball orange|white|yellow");
+  }
+  // --ball auto learns from recordings with two or more cameras (views that agree across
+  // cameras and fly are the ball); otherwise the orange ball's classes (docs/DECISIONS.md).
+  if (learn) {
+    const auto live = std::find_if(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
+    if (live != a.sources.end() || rig.size() < 2) {
+      spdlog::warn(
+          "--ball auto learns the ball's colour from recordings of two or more cameras; {}: "
+          "tracking an orange ball (give --ball orange|white|yellow or --classes FILE, e.g. the "
+          "ball_classes.yaml a run on a recording of this hall saved)",
+          live != a.sources.end() ? *live + " is live" : "the rig has one camera");
+      learn = false;
     }
   }
   track::FrameSetOptions options;
   options.use_roi = !a.no_roi;
   options.confirm_tracks = !a.no_confirm;
-  // auto: the background detector for a white ball (colour alone cannot single it out among
-  // lines, lamps and walls), the colour tables for the others (docs/DECISIONS.md, Detection).
-  options.use_background =
-      a.detector == "background" || (a.detector == "auto" && a.ball == "white");
+  bool white = a.ball == "white";
   options.measure_on_background = a.detector == "coverage";
   options.mask_with_background = a.detector == "masked";
   options.segment.stride = a.stride;
@@ -74,18 +84,31 @@ int Run(const TrackArgs& a) {
     learning.tracking = options;
     spdlog::info("learning the ball's colour from the sources' first {:.0f} s",
                  learning.max_seconds);
-    const LearnColourResult learnt = LearnBallColour(rig, a.sources, learning);
-    classes = learnt.colour.classes;
-    options.ball_colour = learnt.colour.ball;
-    const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
-    WriteColorClasses(classes, saved);
-    const segment::Yuv& lit = learnt.colour.ball.lit;
-    spdlog::info(
-        "learnt the ball's colour from {} views in {} tracks ({:.1f} s): lit YUV {:.0f} {:.0f} "
-        "{:.0f}, {} classes, saved to {} (reuse with --classes)",
-        learnt.views, learnt.tracks, learnt.seconds, lit.y, lit.u, lit.v, classes.classes.size(),
-        saved);
+    try {
+      const LearnColourResult learnt = LearnBallColour(rig, a.sources, learning);
+      classes = learnt.colour.classes;
+      options.ball_colour = learnt.colour.ball;
+      white = learnt.colour.ball.IsWhite();
+      const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
+      WriteColorClasses(classes, saved);
+      const segment::Yuv& lit = learnt.colour.ball.lit;
+      spdlog::info(
+          "learnt the ball's colour from {} views in {} tracks ({:.1f} s): lit YUV {:.0f} {:.0f} "
+          "{:.0f}{}, {} classes (they take {:.1f} % of the ball's pixels, {:.2f} % of the other "
+          "moving pixels, {:.2f} % before giving up the colours those have more of), saved to {} "
+          "(reuse with --classes)",
+          learnt.views, learnt.tracks, learnt.seconds, lit.y, lit.u, lit.v,
+          white ? " (a white ball)" : "", classes.classes.size(),
+          100.0 * (1.0 - learnt.colour.ball_lost), 100.0 * learnt.colour.moving_taken,
+          100.0 * learnt.colour.moving_taken_before, saved);
+    } catch (const Error& e) {
+      // A source that cannot be read fails again below, with its own message.
+      spdlog::warn("{}; tracking an orange ball", e.what());
+    }
   }
+  // auto: the background detector for a white ball (colour alone cannot single it out among
+  // lines, lamps and walls), the colour tables for the others (docs/DECISIONS.md, Detection).
+  options.use_background = a.detector == "background" || (a.detector == "auto" && white);
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   GameOptions game;
   game.enabled = !a.no_referee;
@@ -147,8 +170,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
       ->check(CLI::ExistingFile);
   cmd->add_option("--ball", args->ball,
-                  "Ball colour when no --classes; auto: learnt from the recordings' first "
-                  "seconds (saved as ball_classes.yaml in --out)")
+                  "Ball colour when no --classes; auto: learnt from the recordings' first seconds "
+                  "(saved as ball_classes.yaml in --out; an orange ball's colours for live "
+                  "sources, one camera, or when the ball was not seen flying)")
       ->check(CLI::IsMember({"orange", "white", "yellow", "auto"}))
       ->capture_default_str();
   cmd->add_flag("--no-roi", args->no_roi, "Search the whole image every frame");

@@ -9,7 +9,7 @@
 namespace p4 {
 
 bool LearnColourOptions::IsValid(std::string* error) const {
-  if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1) {
+  if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1 || !(moving_clear >= 0.0)) {
     if (error) *error = "colour learning: seconds, views and tracks must be positive";
     return false;
   }
@@ -67,6 +67,10 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
       samples.AddDisc(*set.images[d.camera], d.pixel, d.diameter_px, options.learning,
                       &tracker.background(d.camera));
       ++result.views;
+      // What else moves in this picture (arms, heads, shirts) is what the colours must not take.
+      const std::vector<Eigen::Vector2d> ball = {d.pixel};
+      samples.AddMoving(*set.images[d.camera], tracker.background(d.camera), ball,
+                        options.moving_clear * d.diameter_px, options.learning);
     }
     if (result.views >= options.min_views && result.tracks >= options.min_tracks &&
         samples.size() >= 2 * options.learning.min_samples) {

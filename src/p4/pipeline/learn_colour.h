@@ -26,6 +26,9 @@ struct LearnColourOptions {
   double max_height = 1.0;   // m above the table top: views over the table below it are sampled
   double min_speed = 1.5;    // m/s: ...while the track flies at least this fast
   double mask_sigmas = 5.0;  // what differs from the hall by this many sigmas (less: noise)
+  // What moves in a sampled picture farther than this many ball diameters from the ball is not
+  // the ball (segment::ColourSamples::AddMoving): the colours give up what it has more of.
+  double moving_clear = 2.0;
   segment::ColourLearningOptions learning;
   track::FrameSetOptions tracking;  // its classes are AnyColour(), its detector masked
 

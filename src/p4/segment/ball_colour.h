@@ -11,6 +11,7 @@
 // background, whatever the shading or the blur. Pure.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 namespace p4::segment {
@@ -30,6 +31,9 @@ struct BallColour {
   static BallColour Yellow();
   // "orange", "white" or "yellow"; false for another name.
   static bool Named(const std::string& name, BallColour* out);
+  // A white ball: its lit chroma within 30 levels of grey (an orange or a yellow ball lies 80-100
+  // levels away; a white ball under a tinted light 10-20).
+  bool IsWhite() const { return std::hypot(lit.u - 128.0f, lit.v - 128.0f) < 30.0f; }
   bool IsValid(std::string* error) const;
 };
 
