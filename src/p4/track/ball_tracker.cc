@@ -10,8 +10,9 @@ namespace p4::track {
 
 bool TrackerOptions::IsValid(std::string* error) const {
   if (!kalman.IsValid(error)) return false;
-  if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0)) {
-    if (error) *error = "gate, coast time and max speed must be positive";
+  if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0) || !(slow_speed >= 0.0) ||
+      !(slow_window_s > 0.0) || !(fall_share >= 0.0) || !(slow_fit_rms > 0.0)) {
+    if (error) *error = "gate, coast time, speeds, the slow window and fall share must be positive";
     return false;
   }
   if (!(bounce_restitution > 0.0 && bounce_restitution <= 1.0)) {
@@ -70,6 +71,7 @@ void BallTracker::Began(TimeNs t) {
   last_t_ = last_update_t_ = t;
   last_position_ = filter_.state().head<3>();
   pending_.reset();
+  recent_.clear();
   ++restarts_;
 }
 
@@ -161,7 +163,45 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
   }
   out.position = filter_.state().head<3>();
   out.velocity = filter_.state().tail<3>();
+  if (used && options_.slow_speed > 0.0 &&
+      options_.kalman.noise == KalmanOptions::Noise::kAcceleration) {
+    recent_.emplace_back(t, m->position);
+    while (t - recent_.front().first > FromSeconds(options_.slow_window_s)) recent_.pop_front();
+    if (SlowAndNotFalling()) {
+      tracking_ = false;
+      return std::nullopt;
+    }
+  }
   return out;
+}
+
+bool BallTracker::SlowAndNotFalling() const {
+  // A window spanning most of slow_window_s, with enough points for a parabola to mean something.
+  if (recent_.size() < 5 ||
+      ToSeconds(recent_.back().first - recent_.front().first) < 0.9 * options_.slow_window_s) {
+    return false;
+  }
+  // Across a table contact the flight is two parabolas: no judgement.
+  for (const auto& [t, p] : recent_) {
+    if (table::OnSurface(p.x(), p.y()) && p.z() < options_.ball_radius + 0.03) return false;
+  }
+  // p(t) = a + b t + c t^2 per axis by least squares, t from the window's middle.
+  const TimeNs mid = recent_.front().first + (recent_.back().first - recent_.front().first) / 2;
+  Eigen::MatrixXd a(recent_.size(), 3);
+  Eigen::MatrixXd p(recent_.size(), 3);
+  for (std::size_t i = 0; i < recent_.size(); ++i) {
+    const double t = ToSeconds(recent_[i].first - mid);
+    a.row(static_cast<Eigen::Index>(i)) << 1.0, t, t * t;
+    p.row(static_cast<Eigen::Index>(i)) = recent_[i].second.transpose();
+  }
+  const Eigen::MatrixXd fit = a.colPivHouseholderQr().solve(p);  // rows: a, b, c
+  // One parabola must explain the window (a bounce or a hit the samples missed: no judgement).
+  const double rms = std::sqrt((a * fit - p).squaredNorm() / static_cast<double>(recent_.size()));
+  if (rms > options_.slow_fit_rms) return false;
+  const double speed = fit.row(1).norm();
+  const double fall = -2.0 * fit(2, 2);  // downward acceleration
+  const double g = options_.kalman.gravity;
+  return speed < options_.slow_speed && std::abs(fall) < options_.fall_share * g;
 }
 
 std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> BallTracker::Predict(TimeNs t) const {

@@ -5,11 +5,13 @@
 //   the exact crossing time with a restitution, instead of flipping vz after the fact;
 // - hit (and any sudden change): a measurement far from the prediction is gated out; the track
 //   restarts from it at once when it is a sound multi-camera measurement, or after a second one
-//   that agrees with it, with the velocity they imply.
+//   that agrees with it, with the velocity they imply;
+// - a track that moves slowly and does not fall (slow_speed) ends: it is not the ball in play.
 // Time: int64 ns from the caller (the frames' time-stamps), never a constant step. Pure.
 #pragma once
 
 #include <Eigen/Core>
+#include <deque>
 #include <optional>
 #include <string>
 
@@ -49,6 +51,17 @@ struct TrackerOptions {
   // A measurement the gate refuses restarts the track (at once when sound, else with a second
   // that agrees). Off: it is left out, and the caller starts new tracks (TrackInitiator).
   bool restart_on_refusal = true;
+  // A ball in flight falls: a track whose measurements over the last slow_window_s moved slower
+  // than slow_speed with a vertical acceleration under fall_share of gravity either way (by a
+  // parabola fitted to them within slow_fit_rms; a window across a table contact, or that one
+  // parabola does not fit, is not judged) is not the ball in play (a hand, a shirt, a ball held
+  // or at rest) and ends. A slow ball is near the top of a toss or a lob, where it falls with
+  // gravity (spin and drag are small at that speed). slow_speed 0: never (and never with the
+  // paper's filter).
+  double slow_speed = 2.0;     // m/s
+  double slow_window_s = 0.2;  // s
+  double fall_share = 0.5;     // of gravity
+  double slow_fit_rms = 0.01;  // m
 
   bool IsValid(std::string* error) const;
 };
@@ -69,6 +82,8 @@ class BallTracker {
   int restarts() const { return restarts_; }
 
  private:
+  // Whether the measurements taken over the last slow_window_s move slowly without falling.
+  bool SlowAndNotFalling() const;
   // Predicts the filter to dt ahead, with the table bounce.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
   // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.
@@ -89,6 +104,8 @@ class BallTracker {
   TimeNs last_update_t_ = 0;
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
   std::optional<std::pair<TimeNs, Measurement>> pending_;    // a measurement the gate refused
+  // The measurements the filter took over the last slow_window_s (time, position).
+  std::deque<std::pair<TimeNs, Eigen::Vector3d>> recent_;
   int restarts_ = 0;
 };
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include "p4/core/table.h"
@@ -45,6 +46,33 @@ Measurement Measure(const Eigen::Vector3d& p, double sigma) {
   m.covariance = sigma * sigma * Eigen::Matrix3d::Identity();
   m.cameras = 2;
   return m;
+}
+
+// A slow ball is near the top of a toss or a lob, where it falls with gravity. A hand or a shirt
+// that the track took, moving at 0.6 m/s without falling, ends the track once 0.2 s of it have
+// been seen; a serve toss that rises 25 cm and falls is followed throughout, and so is a ball
+// rolling across the table (it touches the table: no judgement there).
+TEST(BallTracker, ATrackThatStaysSlowerThanAFlyingBallEnds) {
+  const auto run = [](const std::function<Eigen::Vector3d(double)>& at, double seconds) {
+    BallTracker tracker;
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.002);
+    for (double t = 0.0; t <= seconds; t += 1.0 / 120.0) {
+      const Eigen::Vector3d p = at(t) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      if (!tracker.Step(FromSeconds(t), Measure(p, 0.003))) return t;
+    }
+    return seconds;  // when the track first gave no state (it ended)
+  };
+  const double hand = run([](double t) { return Eigen::Vector3d(1.9 + 0.6 * t, 0.3, 0.25); }, 1.0);
+  EXPECT_GT(hand, 0.17);
+  EXPECT_LT(hand, 0.25);
+  const double toss =
+      run([](double t) { return Eigen::Vector3d(-1.5, 0.2, 0.1 + 2.2 * t - 0.5 * 9.81 * t * t); },
+          0.45);
+  EXPECT_GE(toss, 0.44);
+  const double rolling =
+      run([](double t) { return Eigen::Vector3d(0.5 + 0.5 * t, 0.1, table::kBallRadius); }, 1.0);
+  EXPECT_GE(rolling, 1.0);
 }
 
 TEST(BallTracker, FiltersNoiseOnASpinningFlightWithABounce) {

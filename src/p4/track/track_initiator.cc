@@ -10,9 +10,10 @@
 namespace p4::track {
 
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
-  if (confirm_points < 2 || !(min_travel >= 0.0) || !(gate > 0.0) || !(gate_sigmas >= 0.0) ||
-      !(max_gap_s > 0.0) || !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) ||
-      !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0) {
+  if (confirm_points < 2 || !(min_travel >= 0.0) || !(min_travel_speed >= 0.0) || !(gate > 0.0) ||
+      !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) || !(fall_span_s > 0.0) ||
+      !(fall_tolerance > 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) ||
+      max_tracklets < 1 || max_missed < 0) {
     if (error) {
       *error =
           "track initiator: need confirm_points >= 2, positive gate, gap, speed and tracklets, "
@@ -58,9 +59,11 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   if (static_cast<int>(points.size()) < options_.confirm_points) return false;
   const Eigen::Vector3d travel =
       points.back().measurement.position - points.front().measurement.position;
-  if (travel.norm() >= options_.min_travel) return true;
-  // Falling: z = a + b t + c t^2 by least squares, c against -g/2.
   const double span = ToSeconds(points.back().t - points.front().t);
+  if (travel.norm() >= options_.min_travel && travel.norm() >= options_.min_travel_speed * span) {
+    return true;
+  }
+  // Falling: z = a + b t + c t^2 by least squares, c against -g/2.
   if (span < options_.fall_span_s) return false;
   Eigen::MatrixXd a(points.size(), 3);
   Eigen::VectorXd z(points.size());

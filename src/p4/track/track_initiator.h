@@ -27,7 +27,10 @@ namespace p4::track {
 
 struct TrackInitiatorOptions {
   int confirm_points = 4;    // points in a row that confirm a tracklet
-  double min_travel = 0.10;  // m between its first and last point (2.5 ball diameters)
+  double min_travel = 0.10;  // m between its first and last point (2.5 ball diameters)...
+  // ...at this mean speed at least (m/s): slower, a hand or a shirt moves as far; a slow ball
+  // (the top of a toss) confirms by its fall below.
+  double min_travel_speed = 1.5;
   // A slow ball (a serve toss near its top) travels less, but falls as nothing else in the hall
   // does: a tracklet spanning fall_span_s whose heights fit a parabola with gravity's curvature
   // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) is confirmed too.

@@ -67,6 +67,20 @@ TEST(TrackInitiator, WhatStaysOrFlickersIsNeverConfirmed) {
   }
 }
 
+// A hand or a shirt of the ball's colour moving at 0.8 m/s, seen in every set, travels 20 cm in
+// the initiator's 0.25 s: more than a ball's 10 cm, but too slowly for a ball that does not fall.
+TEST(TrackInitiator, ASlowHandThatDoesNotFallIsNeverConfirmed) {
+  TrackInitiator initiator;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  for (int k = 0; k < 120; ++k) {
+    const double t = k / kRate;
+    const Eigen::Vector3d hand(1.9 + 0.8 * t + noise(rng), 0.3 + noise(rng),
+                               0.25 + 0.03 * std::sin(6.0 * t) + noise(rng));
+    ASSERT_FALSE(initiator.Push(FromSeconds(t), {{Point(k, hand, 0)}}).has_value()) << k;
+  }
+}
+
 TEST(TrackInitiator, ABounceBreaksTheChainAndTheFlightAfterItIsConfirmedAgain) {
   TrackInitiator initiator;
   // Down at 3 m/s onto the table at k = 0, up at 2.5 m/s after it; 4 m/s along x.
