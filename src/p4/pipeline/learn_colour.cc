@@ -84,6 +84,14 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
         "--classes FILE",
         result.seconds, result.views, result.tracks, why.empty() ? "" : ": ", why));
   }
+  if (result.colour.ball.IsGrey() && !result.colour.ball.IsWhite()) {
+    const segment::Yuv& lit = result.colour.ball.lit;
+    throw Error(fmt::format(
+        "--ball auto: what flew over the table in the first {:.1f} s is a dark grey (lit YUV "
+        "{:.0f} {:.0f} {:.0f}), no ball's colour (a shadow, a shoe); give its colour with --ball "
+        "orange|white|yellow or --classes FILE",
+        result.seconds, lit.y, lit.u, lit.v));
+  }
   return result;
 }
 

@@ -42,8 +42,8 @@ struct LearnColourResult {
   double seconds = 0.0;  // of the sources looked at
 };
 
-// Throws p4::Error when the ball was not seen flying enough to learn its colour (with what was
-// seen), or a source fails to open.
+// Throws p4::Error when the ball was not seen flying enough to learn its colour, or what flew has
+// no ball's colour (a dark grey), saying what was seen; or when a source fails to open.
 LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>& sources,
                                   const LearnColourOptions& options);
 

@@ -31,9 +31,12 @@ struct BallColour {
   static BallColour Yellow();
   // "orange", "white" or "yellow"; false for another name.
   static bool Named(const std::string& name, BallColour* out);
-  // A white ball: its lit chroma within 30 levels of grey (an orange or a yellow ball lies 80-100
-  // levels away; a white ball under a tinted light 10-20).
-  bool IsWhite() const { return std::hypot(lit.u - 128.0f, lit.v - 128.0f) < 30.0f; }
+  // Grey: the lit chroma within 30 levels of neutral (an orange or a yellow ball lies 80-100
+  // levels away; a white ball under a tinted light 10-20). A white ball is a bright grey (its
+  // lit side above 110; the simulator's white halls give 170-245): a dark grey is no ball's
+  // colour (a shadow, a shoe).
+  bool IsGrey() const { return std::hypot(lit.u - 128.0f, lit.v - 128.0f) < 30.0f; }
+  bool IsWhite() const { return IsGrey() && lit.y > 110.0f; }
   bool IsValid(std::string* error) const;
 };
 

@@ -117,6 +117,21 @@ TEST(ColourLearning, NothingIsGivenUpWhenWhatMovesHasOtherColours) {
   EXPECT_EQ(learnt.ball_lost, 0.0);
 }
 
+// What a learnt colour says: the named balls are what they are named; a dark grey (a shadow or a
+// shoe a webcam's learner once followed) is no ball.
+TEST(ColourLearning, AWhiteBallIsABrightGrey) {
+  EXPECT_TRUE(BallColour::White().IsWhite());
+  EXPECT_FALSE(BallColour::Orange().IsGrey());
+  EXPECT_FALSE(BallColour::Yellow().IsGrey());
+  BallColour dark;
+  dark.lit = {65.0f, 118.0f, 141.0f};
+  EXPECT_TRUE(dark.IsGrey());
+  EXPECT_FALSE(dark.IsWhite());
+  BallColour tinted;  // a white ball under a warm light
+  tinted.lit = {200.0f, 115.0f, 140.0f};
+  EXPECT_TRUE(tinted.IsWhite());
+}
+
 TEST(ColourLearning, OptionsAreValidated) {
   ColourLearningOptions options;
   EXPECT_TRUE(options.IsValid(nullptr));
