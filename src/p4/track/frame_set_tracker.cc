@@ -157,17 +157,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     coverage = std::move(merged);
     return static_cast<int>(coverage.size());
   };
-  int found = 0;
-  if (!search.roi.empty()) found = both(search.roi);
-  if (found == 0) {
-    search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
-    found = both({});
-  }
   const bool from_colour = !on_background;
-  // Every region is looked at (a static spot must stay known however many there are). Regions
-  // that were at the same place in the last set (a letter, a lamp; the ball in play moves) come
-  // after the others; those static for static_frames sets are dropped; the first
-  // candidates_per_camera are kept.
   const auto by_coverage = [&](int k) {
     return !from_colour || (measure_only && measured_[c][k].has_value());
   };
@@ -175,6 +165,28 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     return !from_colour ? coverage[k].region
                         : (by_coverage(k) ? measured_[c][k]->region : regions[k]);
   };
+  int found = 0;
+  if (!search.roi.empty()) {
+    found = both(search.roi);
+    // The window holds the ball only if a region there is the ball's size at the predicted point
+    // (after a hit the filter still sends the ball on, into the player's arm): else the whole
+    // image is searched.
+    const double expected = ExpectedDiameterPx(camera, *predicted);
+    bool sized = false;
+    for (int k = 0; k < found && !sized; ++k) {
+      const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
+      sized = ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio;
+    }
+    if (options_.roi_needs_size && !sized) found = 0;
+  }
+  if (found == 0) {
+    search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
+    found = both({});
+  }
+  // Every region is looked at (a static spot must stay known however many there are). Regions
+  // that were at the same place in the last set (a letter, a lamp; the ball in play moves) come
+  // after the others; those static for static_frames sets are dropped; the first
+  // candidates_per_camera are kept.
   std::vector<std::pair<bool, int>> order;  // (still, region)
   for (int k = 0; k < found; ++k) {
     const segment::Region& r = region_of(k);

@@ -57,10 +57,13 @@ struct FrameSetOptions {
   int roi_min_px = 40;   // the paper's fixed 40 px window...
   int roi_max_px = 240;  // ...grown with the predicted ball size and speed
   bool single_camera_fallback = true;
-  double pixel_sigma = 0.5;          // centroid noise, px (for measurement covariances)
-  double diameter_sigma = 0.35;      // diameter noise, px (refined)
-  double diameter_bias_px = 0.65;    // the binary region is this much narrower than the ball
-  bool refine = true;                // the diameter from luma coverage (MeasureBall)
+  double pixel_sigma = 0.5;        // centroid noise, px (for measurement covariances)
+  double diameter_sigma = 0.35;    // diameter noise, px (refined)
+  double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
+  bool refine = true;              // the diameter from luma coverage (MeasureBall)
+  // The window holds the ball only if a region there is the ball's size at the predicted point;
+  // else the whole image is searched (after a hit the filter sends the ball into the arm).
+  bool roi_needs_size = true;
   bool edge_centre = true;           // the centre from the ball's edge (ball_edge.h)...
   double edge_max_elongation = 2.5;  // ...for views at most this much longer than wide
   segment::EdgeCentreOptions edge;

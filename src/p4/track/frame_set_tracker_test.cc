@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "p4/core/table.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/renderer.h"
 
@@ -194,6 +195,34 @@ TEST_F(FrameSetTrackerTest, RoiOutsideTheImageFallsBackToTheWholeImage) {
   EXPECT_LT((last.state->position - far(3)).norm(), 0.01);
   ASSERT_EQ(last.revisions.size(), 3u);
   EXPECT_LT((last.revisions[0].state.position - far(0)).norm(), 0.01);
+}
+
+TEST_F(FrameSetTrackerTest, AnArmInTheWindowDoesNotHideTheBallElsewhere) {
+  // After a hit the filter sends the ball on, and the window lands on the player's arm (an orange
+  // blob four times the ball's size) while the ball flies elsewhere: nothing of the ball's size
+  // in the window, so the whole image is searched and the ball is found. Without that rule
+  // (roi_needs_size off) the window keeps the arm and the ball is lost.
+  const Eigen::Vector3d away(1.0, -0.5, 0.5);
+  for (const bool needs_size : {true, false}) {
+    FrameSetOptions options;
+    options.roi_needs_size = needs_size;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    for (int k = 0; k < 4; ++k) tracker.Process(FromSeconds(k / 120.0), Frames(Ball(k), k));
+    auto views = Frames(away, 4);
+    for (int c = 0; c < 2; ++c) {
+      const auto px = rig_.cameras[c].Project(Ball(4));
+      ASSERT_TRUE(px.has_value());
+      const double depth = (rig_.cameras[c].cam_from_world * Ball(4)).z();
+      PaintOrange(c, px->x(), px->y(), 4.0 * table::kBallRadius * rig_.cameras[c].fx / depth);
+    }
+    const auto result = tracker.Process(FromSeconds(4 / 120.0), views);
+    EXPECT_EQ(result.searches[0].fell_back, needs_size);
+    EXPECT_EQ(result.searches[1].fell_back, needs_size);
+    EXPECT_EQ(result.measurement.has_value(), needs_size);
+    if (needs_size && result.measurement) {
+      EXPECT_LT((result.measurement->position - away).norm(), 0.01);
+    }
+  }
 }
 
 TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
