@@ -10,7 +10,9 @@ namespace p4 {
 
 bool LearnColourOptions::IsValid(std::string* error) const {
   if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1 || !(moving_clear >= 0.0)) {
-    if (error) *error = "colour learning: seconds, views and tracks must be positive";
+    if (error) {
+      *error = "colour learning: seconds, views and tracks must be positive, moving_clear >= 0";
+    }
     return false;
   }
   return learning.IsValid(error) && tracking.IsValid(error);
@@ -72,8 +74,8 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
                       &tracker.background(d.camera));
       ++result.views;
       // What else moves in this picture (arms, heads, shirts) is what the colours must not take.
-      const std::vector<Eigen::Vector2d> ball = {d.pixel};
-      samples.AddMoving(*set.images[d.camera], tracker.background(d.camera), ball,
+      samples.AddMoving(*set.images[d.camera], tracker.background(d.camera),
+                        std::span<const Eigen::Vector2d>(&d.pixel, 1),
                         options.moving_clear * d.diameter_px, options.learning);
     }
     if (result.views >= options.min_views && result.tracks >= options.min_tracks &&

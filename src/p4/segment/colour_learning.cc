@@ -88,15 +88,11 @@ void ColourSamples::AddMoving(const ImageView& image, const BackgroundModel& bac
 
 namespace {
 
-bool Takes(const ColorClass& box, const YuvSample& s) {
-  return s.y >= box.y[0] && s.y <= box.y[1] && s.u >= box.u[0] && s.u <= box.u[1] &&
-         s.v >= box.v[0] && s.v <= box.v[1];
-}
-
 double TakenShare(const std::vector<ColorClass>& boxes, const std::vector<YuvSample>& samples) {
   if (samples.empty()) return 0.0;
   const auto taken = std::count_if(samples.begin(), samples.end(), [&](const YuvSample& s) {
-    return std::any_of(boxes.begin(), boxes.end(), [&](const auto& b) { return Takes(b, s); });
+    return std::any_of(boxes.begin(), boxes.end(),
+                       [&](const ColorClass& b) { return b.Contains(s.y, s.u, s.v); });
   });
   return static_cast<double>(taken) / static_cast<double>(samples.size());
 }

@@ -171,13 +171,15 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     // The window holds the ball only if a region there is the ball's size at the predicted point
     // (after a hit the filter still sends the ball on, into the player's arm): else the whole
     // image is searched.
-    const double expected = ExpectedDiameterPx(camera, *predicted);
-    bool sized = false;
-    for (int k = 0; k < found && !sized; ++k) {
-      const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
-      sized = ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio;
+    if (options_.roi_needs_size) {
+      const double expected = ExpectedDiameterPx(camera, *predicted);
+      bool sized = false;
+      for (int k = 0; k < found && !sized; ++k) {
+        const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
+        sized = ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio;
+      }
+      if (!sized) found = 0;
     }
-    if (options_.roi_needs_size && !sized) found = 0;
   }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
