@@ -15,6 +15,7 @@ std::function<int()> AddCalibrateCommand(CLI::App& app);
 std::function<int()> AddReplayCommand(CLI::App& app);
 std::function<int()> AddBenchCommand(CLI::App& app);
 std::function<int()> AddEvalSuiteCommand(CLI::App& app);
+std::function<int()> AddSyncCommand(CLI::App& app);
 
 // "1280x720" -> width, height (even, 64x48 to 7680x4320); throws p4::Error naming `flag`.
 void ParseSize(const std::string& text, const std::string& flag, int* width, int* height);

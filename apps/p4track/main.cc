@@ -24,6 +24,7 @@ int Run(int argc, char** argv) {
       {"replay", p4::app::AddReplayCommand(app)},
       {"bench", p4::app::AddBenchCommand(app)},
       {"eval-suite", p4::app::AddEvalSuiteCommand(app)},
+      {"sync", p4::app::AddSyncCommand(app)},
   };
   try {
     app.parse(argc, argv);

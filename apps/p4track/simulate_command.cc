@@ -7,6 +7,8 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <numeric>
+#include <random>
 #include <thread>
 
 #include "commands.h"
@@ -50,6 +52,44 @@ struct SimulateArgs {
   double max_duration = 0.0;
   std::string trajectory;
   int threads = 0;
+  // Cameras out of step (beyond the paper): each camera's start, rate and clock drift; camera 0
+  // is the rig's clock.
+  std::string start_offsets, camera_fps, drift_ppm;
+  double rolling_shutter_ms = 0.0, drop_rate = 0.0, stamp_jitter_ms = 0.0;
+};
+
+// One number per camera from "a,b,c" (empty: `fallback` for all).
+std::vector<double> PerCamera(const std::string& text, int cameras, double fallback,
+                              const std::string& flag) {
+  if (text.empty()) return std::vector<double>(cameras, fallback);
+  std::vector<double> values;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    try {
+      std::size_t used = 0;
+      values.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw Error(fmt::format("{}: '{}' is not a number", flag, item));
+    }
+    begin = end + 1;
+  }
+  if (static_cast<int>(values.size()) != cameras) {
+    throw Error(fmt::format("{}: {} value(s) for {} camera(s)", flag, values.size(), cameras));
+  }
+  return values;
+}
+
+// When each camera's frames were exposed, in world (truth) time.
+struct CameraTiming {
+  double start_s = 0.0;  // world time of its first frame (stamp 0)
+  int fps = 0;
+  double rate = 1.0;  // world seconds per second of its clock
+  double line_time_s = 0.0;
+
+  double TopRow(int64_t k) const { return start_s + rate * static_cast<double>(k) / fps; }
 };
 
 int Run(const SimulateArgs& a) {
@@ -104,7 +144,35 @@ int Run(const SimulateArgs& a) {
     std::erase_if(events, [&](const sim::TruthEvent& e) { return e.t >= duration; });
     score_json["truncated_at_s"] = duration;
   }
-  const int64_t frames = static_cast<int64_t>(std::floor(duration * a.fps));
+  // Per camera timing; camera 0 is the rig's clock (truth rows at its frames).
+  const std::vector<double> starts = PerCamera(a.start_offsets, a.cameras, 0.0, "--start-offsets");
+  const std::vector<double> rates = PerCamera(a.camera_fps, a.cameras, a.fps, "--camera-fps");
+  const std::vector<double> drifts = PerCamera(a.drift_ppm, a.cameras, 0.0, "--drift-ppm");
+  if (starts[0] != 0.0 || drifts[0] != 0.0) {
+    throw Error("--start-offsets, --drift-ppm: camera 0 is the rig's clock (0 for it)");
+  }
+  std::vector<CameraTiming> timing(a.cameras);
+  bool in_step = a.rolling_shutter_ms == 0.0 && a.drop_rate == 0.0 && a.stamp_jitter_ms == 0.0;
+  for (int c = 0; c < a.cameras; ++c) {
+    if (std::abs(starts[c]) > 60.0) throw Error("--start-offsets: within +-60 s");
+    if (rates[c] < 1 || rates[c] > 1000 || rates[c] != std::floor(rates[c])) {
+      throw Error(
+          fmt::format("--camera-fps: whole frames a second in [1, 1000], got {}", rates[c]));
+    }
+    if (std::abs(drifts[c]) > 1000.0) throw Error("--drift-ppm: within +-1000 ppm");
+    timing[c] = {starts[c], static_cast<int>(rates[c]), 1.0 + 1e-6 * drifts[c],
+                 a.rolling_shutter_ms / 1000.0 / height};
+    if (exposure > 1.0 / timing[c].fps) {
+      throw Error(fmt::format("--exposure-ms: longer than camera {}'s frame ({:.2f} ms)", c,
+                              1000.0 / timing[c].fps));
+    }
+    in_step = in_step && starts[c] == 0.0 && timing[c].fps == timing[0].fps && drifts[c] == 0.0;
+  }
+  if (a.stamp_jitter_ms > 0.25 * 1000.0 / *std::max_element(rates.begin(), rates.end())) {
+    throw Error("--stamp-jitter-ms: at most a quarter of the fastest camera's frame");
+  }
+  const int truth_fps = timing[0].fps;
+  const int64_t frames = static_cast<int64_t>(std::floor(duration * truth_fps));
 
   sim::ClubRigOptions placing;
   placing.hfov_deg = a.fov;
@@ -112,7 +180,19 @@ int Run(const SimulateArgs& a) {
   placing.seed = a.seed;
   const Rig rig = sim::ClubRig(a.cameras, width, height, a.distortion, placing);
   WriteRig(rig, file("rig.yaml"));
-  WriteTruthCsv(file("truth.csv"), trajectory, a.fps, frames);
+  if (!in_step) {
+    // What a user's rig would say once synchronised: the true clocks (rig.yaml has none).
+    Rig synced = rig;
+    for (int c = 0; c < rig.size(); ++c) {
+      CameraClock& clock = synced.cameras[c].clock;
+      clock.time_offset_s = timing[c].start_s;
+      clock.has_offset = true;
+      clock.clock_rate = timing[c].rate;
+      clock.line_time_s = timing[c].line_time_s;
+    }
+    WriteRig(synced, file("rig_synced.yaml"));
+  }
+  WriteTruthCsv(file("truth.csv"), trajectory, truth_fps, frames);
   WriteEventsJsonl(file("truth_events.jsonl"), events);
   WriteJson(file("truth_score.json"), score_json);
 
@@ -149,37 +229,66 @@ int Run(const SimulateArgs& a) {
   std::atomic<int> next_camera{0};
   std::vector<std::string> errors(rig.size());
   std::vector<std::vector<float>> visibility(rig.size(), std::vector<float>(frames, 0.0f));
+  // Each camera's frames over the scene's world time [0, duration).
+  std::vector<int64_t> camera_frames(rig.size());
+  for (int c = 0; c < rig.size(); ++c) {
+    const CameraTiming& w = timing[c];
+    camera_frames[c] = std::max<int64_t>(
+        0, static_cast<int64_t>(std::ceil((duration - w.start_s) / w.rate * w.fps)));
+  }
+  const int64_t total = std::accumulate(camera_frames.begin(), camera_frames.end(), int64_t{0});
   const auto work = [&]() {
     for (int c = next_camera++; c < rig.size(); c = next_camera++) {
+      const CameraTiming& w = timing[c];
       try {
         sim::CameraRenderer renderer(rig.cameras[c], scene, render);
         VideoWriterOptions vo;
         vo.width = width;
         vo.height = height;
-        vo.fps = a.fps;
+        vo.fps = w.fps;
         vo.codec = codec;
         vo.crf = a.crf;
         vo.threads = std::max(1, cores / rig.size());
+        if (a.stamp_jitter_ms > 0.0) vo.time_base_hz = 90000;
         VideoWriter writer(file(rig.cameras[c].name + VideoExtension(codec)), vo);
         I420Image image(width, height);
-        for (int64_t k = 0; k < frames; ++k) {
-          const double t = static_cast<double>(k) / a.fps;
-          visibility[c][k] = static_cast<float>(
-              renderer.Render(sim::ContentAt(trajectory, t, exposure), k, &image));
-          writer.Write(image);
-          ++done;
+        std::mt19937_64 rng(a.seed * 7919u + static_cast<uint64_t>(c));
+        std::normal_distribution<double> jitter(0.0, a.stamp_jitter_ms / 1000.0);
+        std::uniform_real_distribution<double> uniform(0.0, 1.0);
+        const Camera& camera = rig.cameras[c];
+        for (int64_t k = 0; k < camera_frames[c]; ++k, ++done) {
+          if (k > 0 && uniform(rng) < a.drop_rate) continue;  // lost: no frame, no stamp
+          // Rolling shutter: the ball is drawn at the time its own row was exposed.
+          double t = w.TopRow(k);
+          if (w.line_time_s > 0.0) {
+            double row = 0.5 * height;
+            for (int i = 0; i < 3; ++i) {
+              const auto at = trajectory.At(w.TopRow(k) + w.line_time_s * row);
+              const auto px = at ? camera.Project(at->position) : std::nullopt;
+              if (px) row = std::clamp(px->y(), 0.0, height - 1.0);
+            }
+            t = w.TopRow(k) + w.line_time_s * row;
+          }
+          const double seen = renderer.Render(sim::ContentAt(trajectory, t, exposure), k, &image);
+          // The truth row nearest this frame, within half of its period, takes its visibility.
+          const auto row = std::llround(w.TopRow(k) * truth_fps);
+          if (row >= 0 && row < frames &&
+              std::abs(static_cast<double>(row) / truth_fps - w.TopRow(k)) <= 0.5 / w.fps) {
+            visibility[c][row] = static_cast<float>(seen);
+          }
+          const double stamp = static_cast<double>(k) / w.fps + jitter(rng);
+          writer.Write(image, FromSeconds(stamp));
         }
         writer.Close();
       } catch (const std::exception& e) {
         errors[c] = e.what();
-        done += frames;
+        done += camera_frames[c];
       }
     }
   };
   std::vector<std::thread> threads;
   threads.reserve(workers);
   for (int i = 0; i < workers; ++i) threads.emplace_back(work);
-  const int64_t total = frames * rig.size();
   auto last = std::chrono::steady_clock::now();
   while (done < total) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -192,13 +301,13 @@ int Run(const SimulateArgs& a) {
   for (const auto& e : errors) {
     if (!e.empty()) throw Error(e);
   }
-  WriteVisibilityCsv(file("truth_visibility.csv"), rig, visibility, a.fps);
+  WriteVisibilityCsv(file("truth_visibility.csv"), rig, visibility, truth_fps);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spdlog::info(
       "wrote {}: {} camera(s) x {} frames ({}x{} at {} fps, {:.2f} s of play), {} events "
       "in {:.1f} s",
-      a.out, rig.size(), frames, width, height, a.fps, duration, events.size(), seconds);
+      a.out, rig.size(), frames, width, height, truth_fps, duration, events.size(), seconds);
   return 0;
 }
 
@@ -272,6 +381,23 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
                   "Replay a real flight (tt3d CSV) instead of play")
       ->check(CLI::ExistingFile);
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+  cmd->add_option("--start-offsets", args->start_offsets,
+                  "Cameras out of step: when each camera's recording started, seconds after "
+                  "camera 0's, one per camera (e.g. 0,0.1234); rig.yaml then has no clocks and "
+                  "rig_synced.yaml the true ones");
+  cmd->add_option("--camera-fps", args->camera_fps,
+                  "Frames per second of each camera (e.g. 60,120; default --fps for all)");
+  cmd->add_option("--drift-ppm", args->drift_ppm,
+                  "Each camera's clock drift against camera 0's, parts per million (e.g. 0,40)");
+  cmd->add_option("--rolling-shutter-ms", args->rolling_shutter_ms,
+                  "Rolling shutter: time to read a whole frame out, top row to bottom (phones: "
+                  "15-30 ms)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--drop-rate", args->drop_rate, "Share of frames each camera loses")
+      ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--stamp-jitter-ms", args->stamp_jitter_ms,
+                  "Noise of the timestamps written (sigma, ms); the exposures stay regular")
+      ->check(CLI::Range(0.0, 10.0));
   return [args]() { return Run(*args); };
 }
 

@@ -11,8 +11,10 @@
 #include "p4/io/color_class_file.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
+#include "p4/pipeline/ball_candidates.h"
 #include "p4/pipeline/learn_colour.h"
 #include "p4/pipeline/track_run.h"
+#include "p4/segment/colour_learning.h"
 #include "p4/server/live_hub.h"
 #include "web_ui.h"
 
@@ -30,6 +32,8 @@ struct TrackArgs {
   std::string first_server = "A";
   int best_of = 5;
   bool no_referee = false;
+  bool no_sync = false;
+  double max_offset = 5.0;
   bool ui = false, realtime = false, loop = false;
   std::string layout;
   WebFlags web;
@@ -42,14 +46,57 @@ segment::ColorClassSet NamedClasses(const std::string& ball) {
                             : segment::DefaultOrangeBall();
 }
 
+// Cameras whose clocks the rig does not give are synchronised from the ball before tracking
+// (recordings of two or more cameras); the clocks found are saved as rig_synced.yaml in the run's
+// folder. A rig that gives them, one camera, live sources or --no-sync: as the rig says.
+Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
+  const bool unknown = std::any_of(rig.cameras.begin() + 1, rig.cameras.end(),
+                                   [](const Camera& c) { return !c.clock.has_offset; });
+  const bool live = std::any_of(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
+  if (a.no_sync || rig.size() < 2 || !unknown || live) return rig;
+  const segment::ColorClassSet classes = !a.classes.empty() ? ReadColorClasses(a.classes)
+                                         : a.ball == "auto" ? segment::AnyColour()
+                                                            : NamedClasses(a.ball);
+  BallCandidateOptions candidates;
+  candidates.seconds = std::max(15.0, 2.0 * a.max_offset + 5.0);
+  sync::RigSyncOptions options;
+  options.offsets.max_offset_s = a.max_offset;
+  spdlog::info(
+      "{} gives no time offsets: finding them from the ball in the first {:.0f} s (--no-sync: "
+      "take the cameras as in step)",
+      a.rig, candidates.seconds);
+  const sync::RigSyncResult found = SyncFromSources(rig, a.sources, classes, candidates, options);
+  if (!found.all_found) {
+    for (int c = 1; c < rig.size(); ++c) {
+      if (!found.cameras[c].found) {
+        spdlog::warn("{}", DescribeClock(rig.cameras[c], found.cameras[c], false));
+      }
+    }
+    spdlog::warn("taking the cameras as in step (run `p4track sync` on a longer recording)");
+    return rig;
+  }
+  for (int c = 1; c < rig.size(); ++c) {
+    spdlog::info("{}", DescribeClock(found.rig.cameras[c], found.cameras[c], false));
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(a.out, ec);
+  if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
+  const std::string saved = (std::filesystem::path(a.out) / "rig_synced.yaml").string();
+  WriteRig(found.rig, saved);
+  spdlog::info("saved the rig with its clocks to {} (reuse with --rig: no search)", saved);
+  return found.rig;
+}
+
 int Run(const TrackArgs& a) {
-  const Rig rig = ReadRig(a.rig);
-  bool learn = a.classes.empty() && a.ball == "auto";
-  segment::ColorClassSet classes =
-      !a.classes.empty() ? ReadColorClasses(a.classes) : NamedClasses(a.ball);
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
+  if (!a.layout.empty() && !a.ui)
+    throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
+  const Rig rig = SyncIfNeeded(a, ReadRig(a.rig));
+  bool learn = a.classes.empty() && a.ball == "auto";
+  segment::ColorClassSet classes =
+      !a.classes.empty() ? ReadColorClasses(a.classes) : NamedClasses(a.ball);
   // --ball auto learns from recordings with two or more cameras (views that agree across
   // cameras and fly are the ball); otherwise the orange ball's classes (docs/DECISIONS.md).
   if (learn) {
@@ -124,8 +171,6 @@ int Run(const TrackArgs& a) {
   extras.loop = a.loop;
   // Ctrl-C ends the run as the sources' end would: held rows written, the score final.
   extras.stop = &CatchInterrupts();
-  if (!a.layout.empty() && !a.ui)
-    throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
   if (a.ui) {
     server::LiveOptions live;
     if (!a.layout.empty()) live.markers = ReadMarkerLayout(a.layout);
@@ -218,6 +263,13 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--best-of", args->best_of, "Games in the match (odd)")
       ->check(CLI::IsMember({1, 3, 5, 7}))
+      ->capture_default_str();
+  cmd->add_flag("--no-sync", args->no_sync,
+                "Take the cameras as in step when the rig gives no time offsets (default: found "
+                "from the ball first, as `p4track sync` does)");
+  cmd->add_option("--max-offset", args->max_offset,
+                  "When syncing: search time offsets up to +- this many seconds")
+      ->check(CLI::Range(0.05, 60.0))
       ->capture_default_str();
   cmd->add_flag("--no-referee", args->no_referee, "Track only: no events, no score");
   cmd->add_flag("--ui", args->ui,

@@ -108,7 +108,8 @@ bool ValidateCamera(const Camera& camera, std::string* error) {
       why << "rotation: not a rotation matrix (|R R^T - I| = " << orth << ", det = " << det << ")";
     }
   }
-  const std::string message = why.str();
+  std::string message = why.str();
+  if (message.empty()) ValidateCameraClock(camera.clock, &message);  // writes only on failure
   if (message.empty()) return true;
   if (error) *error = message;
   return false;

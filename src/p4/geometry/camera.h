@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "p4/geometry/camera_clock.h"
 #include "p4/geometry/pose.h"
 
 namespace p4 {
@@ -22,6 +23,7 @@ struct Camera {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
   std::array<double, 5> distortion{};  // k1 k2 p1 p2 k3 (OpenCV order)
   Rigid3d cam_from_world;
+  CameraClock clock;  // when its frames were exposed, in the rig's time (camera_clock.h)
 
   Eigen::Matrix3d K() const;
   bool HasDistortion() const;

@@ -11,6 +11,13 @@ int Rig::Find(const std::string& name) const {
   return -1;
 }
 
+std::vector<CameraClock> RigClocks(const Rig& rig) {
+  std::vector<CameraClock> clocks;
+  clocks.reserve(rig.cameras.size());
+  for (const Camera& camera : rig.cameras) clocks.push_back(camera.clock);
+  return clocks;
+}
+
 bool ValidateRig(const Rig& rig, std::string* error) {
   if (rig.cameras.empty()) {
     if (error) *error = "cameras: the rig has no camera";

@@ -17,6 +17,9 @@ struct Rig {
   int Find(const std::string& name) const;
 };
 
+// Every camera's clock, in the rig's order.
+std::vector<CameraClock> RigClocks(const Rig& rig);
+
 // At least one camera, every camera valid (ValidateCamera), names unique and non-empty.
 // On failure *error names the camera and the field.
 bool ValidateRig(const Rig& rig, std::string* error);

@@ -110,6 +110,16 @@ int ReadPositiveInt(const cv::FileNode& camera, const std::string& key, const st
   return value;
 }
 
+double ReadOptionalNumber(const cv::FileNode& camera, const std::string& key, double fallback,
+                          const std::string& where) {
+  const cv::FileNode node = camera[key];
+  if (node.empty()) return fallback;
+  if (!node.isReal() && !node.isInt()) throw Error(where + ": " + key + ": expected a number");
+  const auto value = static_cast<double>(node);
+  if (!std::isfinite(value)) throw Error(where + ": " + key + ": not finite");
+  return value;
+}
+
 cv::Mat ToMat(const double* data, int rows, int cols) {
   cv::Mat mat(rows, cols, CV_64F);
   for (int r = 0; r < rows; ++r) {
@@ -151,6 +161,11 @@ Rig ReadRig(const std::string& path) {
     camera.cam_from_world.rotation =
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
     camera.cam_from_world.translation = Eigen::Vector3d(t[0], t[1], t[2]);
+    // The clock (optional keys; docs/FORMATS.md): a camera without them is in step.
+    camera.clock.has_offset = !node["time_offset_s"].empty();
+    camera.clock.time_offset_s = ReadOptionalNumber(node, "time_offset_s", 0.0, where);
+    camera.clock.clock_rate = ReadOptionalNumber(node, "clock_rate", 1.0, where);
+    camera.clock.line_time_s = ReadOptionalNumber(node, "line_time_s", 0.0, where);
     std::string why;
     if (!ValidateCamera(camera, &why)) throw Error(fmt::format("{}: {}", where, why));
     rig.cameras.push_back(camera);
@@ -185,6 +200,12 @@ void WriteRig(const Rig& rig, const std::string& path,
       const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> r = camera.cam_from_world.rotation;
       fs << "rotation" << ToMat(r.data(), 3, 3);
       fs << "translation" << ToMat(camera.cam_from_world.translation.data(), 3, 1);
+      // The clock only where it says something (a rig of cameras in step stays as it was).
+      if (camera.clock.has_offset || camera.clock.time_offset_s != 0.0) {
+        fs << "time_offset_s" << camera.clock.time_offset_s;
+      }
+      if (camera.clock.clock_rate != 1.0) fs << "clock_rate" << camera.clock.clock_rate;
+      if (camera.clock.line_time_s != 0.0) fs << "line_time_s" << camera.clock.line_time_s;
       if (const auto it = reprojection_error_px.find(camera.name);
           it != reprojection_error_px.end()) {
         fs << "reprojection_error_px" << it->second;

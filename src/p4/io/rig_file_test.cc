@@ -128,6 +128,48 @@ TEST_F(RigFileTest, ReadsTheDesignExampleAndHandWrittenJson) {
   EXPECT_DOUBLE_EQ(json.cameras[0].distortion[0], 0.0);
 }
 
+TEST_F(RigFileTest, CameraClocksAreOptionalKeys) {
+  // Without the keys: in step (offset unknown, taken as 0), global shutter.
+  const Rig plain = ReadRig(Write("plain.yaml", YamlWith(kGoodCamera)));
+  EXPECT_TRUE(plain.cameras[0].clock.InStep());
+  EXPECT_FALSE(plain.cameras[0].clock.has_offset);
+  // With them, in YAML and JSON, and written back only where they say something.
+  Rig rig = MakeRig();
+  rig.cameras[1].clock.time_offset_s = -0.123456789;
+  rig.cameras[1].clock.has_offset = true;
+  rig.cameras[1].clock.clock_rate = 1.0 + 35e-6;
+  rig.cameras[1].clock.line_time_s = 20e-3 / 1080;
+  for (const char* name : {"clock.yaml", "clock.json"}) {
+    const std::string path = (dir_ / name).string();
+    WriteRig(rig, path);
+    const Rig back = ReadRig(path);
+    EXPECT_TRUE(back.cameras[0].clock.InStep());
+    EXPECT_FALSE(back.cameras[0].clock.has_offset);
+    const CameraClock& c = back.cameras[1].clock;
+    EXPECT_TRUE(c.has_offset);
+    EXPECT_DOUBLE_EQ(c.time_offset_s, -0.123456789);
+    EXPECT_DOUBLE_EQ(c.clock_rate, 1.0 + 35e-6);
+    EXPECT_DOUBLE_EQ(c.line_time_s, 20e-3 / 1080);
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("time_offset_s"), text.rfind("time_offset_s")) << "cam0 has no offset key";
+  }
+  // A world time and back: the offset, the drift and a row's delay.
+  const CameraClock& c = rig.cameras[1].clock;
+  const TimeNs stamp = FromSeconds(100.0);
+  EXPECT_NEAR(ToSeconds(c.WorldTime(stamp)), -0.123456789 + 100.0 * (1.0 + 35e-6), 1e-9);
+  EXPECT_EQ(c.Stamp(c.WorldTime(stamp)), stamp);
+  EXPECT_NEAR(c.RowDelay(1079.0), 20e-3 * 1079.0 / 1080.0, 1e-15);
+  // Bad values name the key.
+  ExpectError(Write("rate.yaml", YamlWith(std::string(kGoodCamera) + "     clock_rate: 1.5\n")),
+              {"rate.yaml", "cam0", "clock_rate"});
+  ExpectError(Write("line.yaml", YamlWith(std::string(kGoodCamera) + "     line_time_s: -0.001\n")),
+              {"line.yaml", "cam0", "line_time_s"});
+  ExpectError(
+      Write("offset.yaml", YamlWith(std::string(kGoodCamera) + "     time_offset_s: soon\n")),
+      {"offset.yaml", "cam0", "time_offset_s", "number"});
+}
+
 TEST_F(RigFileTest, EveryKindOfBadFileIsNamed) {
   ExpectError((dir_ / "missing.yaml").string(), {"missing.yaml", "no such file"});
   ExpectError(Write("garbage.yaml", "%YAML:1.0\n---\ncameras: [ {{{ \n"), {"garbage.yaml"});

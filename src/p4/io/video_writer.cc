@@ -1,5 +1,6 @@
 #include "p4/io/video_writer.h"
 
+#include <cmath>
 #include <cstring>
 
 extern "C" {
@@ -7,6 +8,8 @@ extern "C" {
 #include <libavformat/avformat.h>
 #include <libavutil/opt.h>
 }
+
+#include <fmt/format.h>
 
 #include "p4/core/error.h"
 #include "p4/io/av_error.h"
@@ -36,7 +39,8 @@ struct VideoWriter::Impl {
   AVStream* stream = nullptr;
   AVFrame* frame = nullptr;
   AVPacket* packet = nullptr;
-  int64_t next_pts = 0;
+  int64_t last_pts = 0;
+  int64_t frames = 0;  // written so far
   bool closed = false;
 
   void Drain(bool flush) {
@@ -81,7 +85,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoWriterOptions& opti
   m.codec->width = options.width;
   m.codec->height = options.height;
   m.codec->pix_fmt = AV_PIX_FMT_YUV420P;
-  m.codec->time_base = AVRational{1, options.fps};
+  m.codec->time_base = AVRational{1, options.time_base_hz > 0 ? options.time_base_hz : options.fps};
   m.codec->framerate = AVRational{options.fps, 1};
   m.codec->color_range = AVCOL_RANGE_MPEG;
   m.codec->colorspace = AVCOL_SPC_SMPTE170M;
@@ -125,7 +129,17 @@ VideoWriter::~VideoWriter() {
 }
 
 void VideoWriter::Write(const I420Image& image) {
+  const Impl& m = *impl_;
+  Write(image, FromSeconds(static_cast<double>(m.frames) / m.codec->framerate.num));
+}
+
+void VideoWriter::Write(const I420Image& image, TimeNs stamp) {
   Impl& m = *impl_;
+  const int64_t pts = std::llround(ToSeconds(stamp) * m.codec->time_base.den);
+  if (m.frames > 0 && pts <= m.last_pts) {
+    throw Error(fmt::format("{}: frame stamped {:.6f} s is not after the last one", m.path,
+                            ToSeconds(stamp)));
+  }
   if (image.width() != m.codec->width || image.height() != m.codec->height) {
     throw Error(m.path + ": frame size differs from the video size");
   }
@@ -139,7 +153,9 @@ void VideoWriter::Write(const I420Image& image) {
                   planes[p] + static_cast<std::ptrdiff_t>(row) * widths[p], widths[p]);
     }
   }
-  m.frame->pts = m.next_pts++;
+  m.frame->pts = pts;
+  m.last_pts = pts;
+  ++m.frames;
   const int ret = avcodec_send_frame(m.codec, m.frame);
   if (ret < 0) throw Error(m.path + ": encoding failed: " + AvError(ret));
   m.Drain(false);

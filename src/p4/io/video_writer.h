@@ -6,6 +6,7 @@
 #include <string>
 
 #include "p4/core/image.h"
+#include "p4/core/time.h"
 
 namespace p4 {
 
@@ -18,6 +19,9 @@ struct VideoWriterOptions {
   int crf = 18;  // H.264 quality (lower is better)
   std::string preset = "ultrafast";
   int threads = 1;  // encoder threads
+  // Resolution of the frames' timestamps, ticks a second (0: one tick a frame). Stamps off the
+  // frame grid (jitter, a clock's drift) need more, e.g. 90000.
+  int time_base_hz = 0;
 
   bool IsValid(std::string* error) const;
 };
@@ -33,8 +37,12 @@ class VideoWriter {
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
 
-  void Write(const I420Image& frame);  // throws p4::Error on encoder failure
-  void Close();                        // flushes and writes the trailer; idempotent
+  void Write(const I420Image& frame);  // the next frame, stamped k / fps; throws p4::Error on
+                                       // encoder failure
+  // A frame stamped `stamp` (from the recording's start; rounded to the time base), later than
+  // the last one written: frames can be dropped or stamped off the grid.
+  void Write(const I420Image& frame, TimeNs stamp);
+  void Close();  // flushes and writes the trailer; idempotent
 
  private:
   struct Impl;

@@ -7,14 +7,22 @@
 
 namespace p4 {
 
-FrameSetReader::FrameSetReader(const std::vector<std::string>& sources, bool loop) : loop_(loop) {
-  for (const auto& s : sources) {
+FrameSetReader::FrameSetReader(const std::vector<std::string>& sources, bool loop,
+                               std::vector<CameraClock> clocks)
+    : loop_(loop) {
+  if (!clocks.empty() && clocks.size() != sources.size()) {
+    throw Error("frame sets: " + std::to_string(clocks.size()) + " camera clocks for " +
+                std::to_string(sources.size()) + " sources");
+  }
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const std::string& s = sources[i];
     if (loop && VideoReader::IsLive(s)) {
       throw Error(s + ": a live source cannot loop (only video files start again)");
     }
     Source source;
     source.name = s;
     source.reader = std::make_unique<VideoReader>(s);
+    if (!clocks.empty()) source.clock = clocks[i];
     sources_.push_back(std::move(source));
   }
 }
@@ -31,7 +39,7 @@ bool FrameSetReader::ReadAll() {
         s.has_frame = false;
       }
       if (s.has_frame) {
-        s.pts += shift_;
+        s.pts = s.clock.WorldTime(s.pts) + shift_;
         if (!any_frame_ || s.pts < first_pts_) first_pts_ = s.pts;
         last_pts_ = any_frame_ ? std::max(last_pts_, s.pts) : s.pts;
         any_frame_ = true;
@@ -70,6 +78,7 @@ bool FrameSetReader::Next(FrameSet* set) {
   }
   set->t = *t;
   set->images.assign(sources_.size(), std::nullopt);
+  set->times.assign(sources_.size(), *t);
   for (std::size_t i = 0; i < sources_.size(); ++i) {
     Source& s = sources_[i];
     if (!s.has_frame || s.consumed) continue;
@@ -77,6 +86,7 @@ bool FrameSetReader::Next(FrameSet* set) {
     const TimeNs tolerance = FromSeconds(0.5 / fps);
     if (std::llabs(s.pts - *t) <= tolerance) {
       set->images[i] = s.view;
+      set->times[i] = s.pts;
       s.consumed = true;
     }
   }

@@ -15,20 +15,25 @@
 
 #include "p4/core/image.h"
 #include "p4/core/time.h"
+#include "p4/geometry/camera_clock.h"
 #include "p4/io/video_reader.h"
 
 namespace p4 {
 
 struct FrameSet {
-  TimeNs t = 0;
+  TimeNs t = 0;                                  // the earliest image's time
   std::vector<std::optional<ImageView>> images;  // one per source; views valid until Next()
+  std::vector<TimeNs> times;  // each image's own time in the rig's clock (top row), ns
 };
 
 class FrameSetReader {
  public:
   // Opens every source; throws p4::Error naming the one that fails, or when `loop` is asked of a
   // live source (it cannot start again).
-  explicit FrameSetReader(const std::vector<std::string>& sources, bool loop = false);
+  // `clocks` (one per source, or empty: all in step) map each source's timestamps to the rig's
+  // time (geometry/camera_clock.h) before frames are grouped.
+  explicit FrameSetReader(const std::vector<std::string>& sources, bool loop = false,
+                          std::vector<CameraClock> clocks = {});
 
   bool Next(FrameSet* set);
   int size() const { return static_cast<int>(sources_.size()); }
@@ -41,8 +46,9 @@ class FrameSetReader {
   struct Source {
     std::string name;
     std::unique_ptr<VideoReader> reader;
+    CameraClock clock;
     ImageView view;
-    TimeNs pts = 0;
+    TimeNs pts = 0;  // in the rig's clock
     bool has_frame = false;
     bool consumed = true;
     bool ended = false;

@@ -46,6 +46,33 @@ TEST(FrameSetReader, GroupsTheCamerasFramesByTime) {
   EXPECT_EQ(reader.loops(), 0);
 }
 
+TEST(FrameSetReader, CameraClocksPutEachFrameAtItsRigTime) {
+  // b started recording 2.5 frames after a (a known offset): its frames are grouped with a's
+  // nearest ones and each image keeps its own time.
+  const std::string a = WriteClip("p4_fsr_ca.mkv", 30, 8), b = WriteClip("p4_fsr_cb.mkv", 30, 4);
+  CameraClock late;
+  late.time_offset_s = 2.4 / 30;
+  late.has_offset = true;
+  FrameSetReader reader({a, b}, false, {CameraClock{}, late});
+  FrameSet set;
+  std::vector<TimeNs> b_times;
+  int sets = 0;
+  while (reader.Next(&set)) {
+    ++sets;
+    ASSERT_EQ(set.times.size(), 2u);
+    if (set.images[1]) {
+      b_times.push_back(set.times[1]);
+      EXPECT_TRUE(set.images[0].has_value());  // b's frame lies within half a period of a's
+      EXPECT_NEAR(ToSeconds(set.times[1] - set.times[0]), 0.4 / 30, kMs);
+    }
+  }
+  EXPECT_EQ(sets, 8);
+  ASSERT_EQ(b_times.size(), 4u);
+  EXPECT_NEAR(ToSeconds(b_times[0]), 2.4 / 30, kMs);
+  // A wrong number of clocks is refused.
+  EXPECT_THROW(FrameSetReader({a, b}, false, {late}), Error);
+}
+
 TEST(FrameSetReader, LoopPlaysTheFilesAgainWithTimeGoingOn) {
   const std::string a = WriteClip("p4_fsr_la.mkv", 30, 5), b = WriteClip("p4_fsr_lb.mkv", 30, 5);
   FrameSetReader reader({a, b}, /*loop=*/true);

@@ -41,7 +41,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
-  FrameSetReader reader(sources);
+  FrameSetReader reader(sources, false, RigClocks(rig));
   segment::ColourSamples samples;
   LearnColourResult result;
   std::optional<TimeNs> first;

@@ -55,7 +55,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::string why;
   if (!options.IsValid(&why)) throw Error("tracking options: " + why);
   if (!game.IsValid(&why)) throw Error("game options: " + why);
-  FrameSetReader reader(sources, extras.loop);
+  FrameSetReader reader(sources, extras.loop, RigClocks(rig));
   for (int i = 0; i < reader.size(); ++i) {
     const VideoInfo& info = reader.info(i);
     const Camera& camera = rig.cameras[i];

@@ -1,0 +1,129 @@
+#include "p4/pipeline/ball_candidates.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <exception>
+#include <thread>
+
+#include "p4/core/error.h"
+#include "p4/core/table.h"
+#include "p4/io/video_reader.h"
+#include "p4/segment/background_model.h"
+#include "p4/segment/blob_finder.h"
+#include "p4/segment/foreground_finder.h"
+
+namespace p4 {
+
+bool BallCandidateOptions::IsValid(std::string* error) const {
+  if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_elongation >= 1.0)) {
+    if (error) *error = "ball candidates: seconds, per_frame, sizes must be positive";
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
+    const Rig& rig, const std::vector<std::string>& sources, const segment::ColorClassSet& classes,
+    const BallCandidateOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  if (static_cast<int>(sources.size()) != rig.size()) {
+    throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
+                            sources.size()));
+  }
+  const segment::ColorLut lut = classes.BuildLut();
+  const uint32_t mask = classes.MaskOf("ball") ? classes.MaskOf("ball") : 0xffffffffu;
+  std::vector<std::vector<sync::FrameCandidates>> out(sources.size());
+  std::vector<std::string> errors(sources.size());
+  const auto read = [&](std::size_t c) {
+    try {
+      const Camera& camera = rig.cameras[c];
+      VideoReader reader(sources[c]);
+      if (reader.info().width != camera.width || reader.info().height != camera.height) {
+        throw Error(fmt::format("{}: the video is {}x{} but rig camera '{}' is {}x{}", sources[c],
+                                reader.info().width, reader.info().height, camera.name,
+                                camera.width, camera.height));
+      }
+      // The ball is no nearer than a metre.
+      const double largest = 1.3 * 2.0 * table::kBallRadius * camera.fx;
+      segment::BlobFinder finder;
+      // What differs from a background learnt as the frames come (the colour alone finds
+      // banners, shirts and lettering of the ball's colour; with AnyColour, motion alone).
+      segment::BackgroundModel background(camera.width, camera.height, {});
+      segment::ForegroundFinder foreground;
+      segment::SegmentOptions segment;
+      segment.mask = mask;
+      segment.max_regions = 64;
+      std::vector<segment::Region> regions;
+      // Every region's centre in the last frame: what is there again did not move (lettering,
+      // lamps, a banner's letters) and is no candidate, however large.
+      std::vector<Eigen::Vector2d> last, seen;
+      ImageView view;
+      TimeNs pts = 0;
+      std::optional<TimeNs> first;
+      while (reader.ReadView(&view, &pts)) {
+        if (!first) first = pts;
+        if (ToSeconds(pts - *first) > options.seconds) break;
+        int n = 0;
+        if (background.ready()) {
+          const segment::BlockMask moving =
+              foreground.DifferingBlocks(view, background, {}, options.moving_sigmas, false);
+          n = finder.Find(view, lut, {}, segment, &regions, &moving);
+        }
+        background.Update(view);
+        sync::FrameCandidates frame{ToSeconds(pts), {}};
+        seen.clear();
+        for (int k = 0; k < n; ++k) {
+          const segment::Region& r = regions[k];
+          const Eigen::Vector2d centre(r.cx, r.cy);
+          seen.push_back(centre);
+          if (static_cast<int>(frame.pixels.size()) >= options.per_frame ||
+              r.minor_diameter < options.min_diameter_px || r.minor_diameter > largest ||
+              r.major_diameter > options.max_elongation * std::max(1.0, r.minor_diameter)) {
+            continue;
+          }
+          const bool still = std::any_of(last.begin(), last.end(), [&](const Eigen::Vector2d& p) {
+            return (p - centre).norm() < options.still_px;
+          });
+          if (!still) frame.pixels.push_back(centre);
+        }
+        std::swap(last, seen);
+        out[c].push_back(std::move(frame));
+      }
+    } catch (const std::exception& e) {
+      errors[c] = e.what();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t c = 0; c < sources.size(); ++c) threads.emplace_back(read, c);
+  for (auto& t : threads) t.join();
+  for (const auto& e : errors) {
+    if (!e.empty()) throw Error(e);
+  }
+  return out;
+}
+
+sync::RigSyncResult SyncFromSources(const Rig& rig, const std::vector<std::string>& sources,
+                                    const segment::ColorClassSet& classes,
+                                    const BallCandidateOptions& candidates,
+                                    const sync::RigSyncOptions& sync) {
+  std::string why;
+  if (!sync.IsValid(&why)) throw Error(why);
+  return sync::SynchroniseRig(rig, ReadBallCandidates(rig, sources, classes, candidates), sync);
+}
+
+std::string DescribeClock(const Camera& camera, const sync::OffsetResult& r, bool reference) {
+  if (reference) {
+    return fmt::format("{}: the rig's clock (offset {:+.6f} s)", camera.name,
+                       camera.clock.time_offset_s);
+  }
+  if (!r.found) return fmt::format("{}: not found: {}", camera.name, r.why);
+  return fmt::format("{}: offset {:+.6f} s +- {:.3f} ms, {} ({} of {} points agree, {:.2f} px RMS)",
+                     camera.name, r.offset_s, 1e3 * r.sigma_s,
+                     r.rate_fitted ? fmt::format("drift {:+.1f} ppm", 1e6 * (r.rate - 1.0))
+                                   : std::string("drift not fitted (under 20 s of agreeing play)"),
+                     r.agreements, r.points, r.rms_px);
+}
+
+}  // namespace p4

@@ -1,0 +1,48 @@
+// Each source's ball candidates, frame by frame, read on its own (beyond the paper: before the
+// cameras' clocks are known there are no frame sets). The colour tables over the whole picture
+// (paper §3.1) where it differs from a background model learnt as the frames come (with
+// segment::AnyColour(), whatever moves), regions of the ball's size for the camera (nearer than
+// 1 m is too big, a few pixels across is the least) that were not in the last frame, their
+// centroids. Hands and heads that pass make 2D tracks too: any real moving thing that both
+// cameras see tells their offset. For sync/rig_sync.h.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "p4/geometry/rig.h"
+#include "p4/segment/color_classes.h"
+#include "p4/sync/rig_sync.h"
+#include "p4/sync/track_2d.h"
+
+namespace p4 {
+
+struct BallCandidateOptions {
+  double seconds = 15.0;  // from each source's start
+  int per_frame = 6;      // the largest regions of the ball's size
+  double min_diameter_px = 1.5;
+  double max_elongation = 4.0;  // a blurred ball is a short streak, a shirt's edge is long
+  double still_px = 1.5;        // a region this near one of the last frame's did not move: dropped
+  double moving_sigmas = 3.0;   // pixels must differ from the learnt background by this much
+
+  bool IsValid(std::string* error) const;
+};
+
+// Reads the first `seconds` of every source (a thread each; files only) and returns, per source,
+// its frames' candidates with the file's own stamps. Throws p4::Error naming a source that
+// cannot be read or whose size differs from its rig camera's.
+std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
+    const Rig& rig, const std::vector<std::string>& sources, const segment::ColorClassSet& classes,
+    const BallCandidateOptions& options = {});
+
+// The rig's clocks from the sources: their candidates (above), then sync::SynchroniseRig.
+sync::RigSyncResult SyncFromSources(const Rig& rig, const std::vector<std::string>& sources,
+                                    const segment::ColorClassSet& classes,
+                                    const BallCandidateOptions& candidates = {},
+                                    const sync::RigSyncOptions& sync = {});
+
+// One line on a camera's clock as found: "cam1: +0.123412 s +- 0.03 ms (...)" or why not.
+std::string DescribeClock(const Camera& camera, const sync::OffsetResult& result, bool reference);
+
+}  // namespace p4

@@ -1,0 +1,63 @@
+// The time offset (and clock drift) of a camera against a reference camera, found from the
+// ball's own motion (beyond the paper, whose cameras were triggered together).
+//
+// Camera b's clock maps to the reference's (world) time as t = offset + rate * stamp (the rig's
+// CameraClock, geometry/camera_clock.h). Where b sees the ball at stamp s, the reference's track
+// of the ball must cross the epipolar line of b's pixel at world time offset + rate * s.
+//   1. Coarse: every point of b's tracks votes for offset = t* - s at each crossing t* of that
+//      line by the reference's tracks (between consecutive points); votes go into bins over
+//      +-max_offset_s; the true offset collects a vote from nearly every point, chance crossings
+//      spread evenly.
+//   2. Fine: the offset (and, over long recordings, the rate) that minimises the robust sum of
+//      epipolar distances between b's points and the reference's track interpolated at their
+//      world times (iteratively reweighted Gauss-Newton), with its standard deviation from the
+//      residuals.
+// Refuses (found = false, `why` says) when too few points agree or a second offset is as good.
+//
+// Reference track times are world seconds (the reference's clock applied, rows' delays
+// included); b's are its own stamps (its row delays included). Pixels are each camera's real
+// (distorted) ones. Pure.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "p4/geometry/camera.h"
+#include "p4/sync/track_2d.h"
+
+namespace p4::sync {
+
+struct OffsetOptions {
+  double max_offset_s = 5.0;     // search +- this
+  double bin_s = 0.002;          // coarse bins
+  double inlier_px = 3.0;        // an epipolar distance that agrees (reference's ideal pixels)
+  double huber_px = 1.0;         // the fine fit's robust loss: quadratic within, linear beyond
+  int min_agreements = 40;       // points that agree at the offset found
+  double max_second_peak = 0.6;  // a second coarse peak (> 2 bins away) this close refuses
+  double max_interpolation_gap_s = 0.05;  // reference points farther apart are not joined
+  double min_crossing_px = 0.2;  // a segment must cross a line by this much (not run along it)
+  // The rate is fitted when b's agreeing points span this long (drift of 50 ppm moves the
+  // offset by 0.5 ms in 10 s); else rate = 1.
+  double min_span_for_rate_s = 20.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct OffsetResult {
+  bool found = false;
+  std::string why;        // when not found: what was missing
+  double offset_s = 0.0;  // world time of b's stamp 0
+  double rate = 1.0;      // world seconds per second of b's clock
+  bool rate_fitted = false;
+  double sigma_s = 0.0;     // standard deviation of the offset
+  int agreements = 0;       // b's points within inlier_px at the offset found
+  int points = 0;           // b's points that could be compared (the reference's track there)
+  double rms_px = 0.0;      // of the agreeing points' epipolar distances
+  double peak_ratio = 0.0;  // the second coarse peak's votes over the first's
+};
+
+OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& reference_tracks,
+                        const Camera& b, const std::vector<Track2d>& b_tracks,
+                        const OffsetOptions& options = {});
+
+}  // namespace p4::sync

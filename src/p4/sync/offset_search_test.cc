@@ -1,0 +1,93 @@
+#include "p4/sync/offset_search.h"
+
+#include <gtest/gtest.h>
+
+#include "p4/sync/sync_test_world.h"
+
+namespace p4::sync {
+namespace {
+
+using testing::Recording;
+
+struct Found {
+  OffsetResult result;
+  double truth_offset = 0.0;
+};
+
+// Records a rally with camera "side" as the rig's clock and "end" at `b`, and searches.
+OffsetResult Search(const Recording& b, double reference_fps = 60.0, double seconds = 12.0,
+                    OffsetOptions options = {}) {
+  const testing::Rally rally(seconds + 6.0, 11);
+  Recording a;
+  a.fps = reference_fps;
+  a.seconds = seconds;
+  const Camera ref = testing::SideCamera(), cam = testing::EndCamera();
+  const auto ref_tracks = LinkTracks(testing::Record(ref, rally, a, 1));
+  const auto b_tracks = LinkTracks(testing::Record(cam, rally, b, 2));
+  return FindOffset(ref, ref_tracks, cam, b_tracks, options);
+}
+
+TEST(FindOffset, RecoversWholeFrameAndSubFrameShifts) {
+  // Offsets of whole frames and fractions, either sign, up to the search's reach.
+  for (const double offset : {0.0, 4.0, -2.5, 0.1234, -0.00761, 1.01234}) {
+    Recording b;
+    b.offset_s = offset;
+    b.seconds = 12.0 - std::max(0.0, offset);
+    const OffsetResult r = Search(b);
+    ASSERT_TRUE(r.found) << offset << ": " << r.why;
+    EXPECT_NEAR(r.offset_s, offset, 0.5e-3) << "offset " << offset;
+    EXPECT_LT(r.sigma_s, 0.5e-3);
+    EXPECT_GT(r.sigma_s, 0.0);
+    EXPECT_LT(r.rms_px, 1.0);
+    EXPECT_FALSE(r.rate_fitted);
+  }
+}
+
+TEST(FindOffset, CamerasAtDifferentRatesAndDroppedFrames) {
+  Recording b;
+  b.fps = 120.0;
+  b.offset_s = 0.3333;
+  b.drop_rate = 0.1;
+  const OffsetResult r = Search(b, 60.0);
+  ASSERT_TRUE(r.found) << r.why;
+  EXPECT_NEAR(r.offset_s, 0.3333, 0.5e-3);
+  // 25 and 30 fps webcams, one of them dark for a second.
+  Recording slow;
+  slow.fps = 25.0;
+  slow.offset_s = -1.2;
+  slow.dark_from_s = 4.0, slow.dark_to_s = 5.0;
+  const OffsetResult s = Search(slow, 30.0);
+  ASSERT_TRUE(s.found) << s.why;
+  EXPECT_NEAR(s.offset_s, -1.2, 0.5e-3);
+}
+
+TEST(FindOffset, FitsTheDriftOverALongRecording) {
+  Recording b;
+  b.offset_s = 0.2;
+  b.drift_ppm = 60.0;  // 2.4 ms over the 40 s
+  b.seconds = 40.0;
+  const OffsetResult r = Search(b, 60.0, 40.0);
+  ASSERT_TRUE(r.found) << r.why;
+  EXPECT_TRUE(r.rate_fitted);
+  EXPECT_NEAR(r.offset_s, 0.2, 0.5e-3);
+  EXPECT_NEAR((r.rate - 1.0) * 1e6, 60.0, 10.0);
+  // At the end of the recording the clock still agrees within half a millisecond.
+  EXPECT_NEAR(r.offset_s + r.rate * 40.0, 0.2 + (1.0 + 60e-6) * 40.0, 0.5e-3);
+}
+
+TEST(FindOffset, RefusesWithTooLittleMotion) {
+  // Half a second of recording: one flight at most.
+  Recording b;
+  b.offset_s = 0.05;
+  b.seconds = 0.5;
+  const OffsetResult r = Search(b, 60.0, 0.5);
+  EXPECT_FALSE(r.found);
+  EXPECT_NE(r.why.find("too little ball motion"), std::string::npos) << r.why;
+  // Nothing at all.
+  const OffsetResult none = FindOffset(testing::SideCamera(), {}, testing::EndCamera(), {});
+  EXPECT_FALSE(none.found);
+  EXPECT_NE(none.why.find("not seen"), std::string::npos) << none.why;
+}
+
+}  // namespace
+}  // namespace p4::sync

@@ -1,0 +1,100 @@
+// A world for the sync tests: a rally of ball flights over the table, seen by two cameras whose
+// clocks differ, with detection noise, false candidates and dropped frames.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "p4/geometry/camera.h"
+#include "p4/geometry/test_cameras.h"
+#include "p4/sync/track_2d.h"
+
+namespace p4::sync::testing {
+
+// Flights from end to end, each of its own length, height and aim, for `seconds`.
+class Rally {
+ public:
+  Rally(double seconds, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double t = 0.3;
+    int direction = 1;
+    while (t < seconds) {
+      Flight f;
+      f.t0 = t;
+      f.duration = 0.45 + 0.4 * u(rng);
+      f.from = {-1.6 * direction, -0.6 + 1.2 * u(rng), 0.15 + 0.3 * u(rng)};
+      f.to = {1.6 * direction, -0.6 + 1.2 * u(rng), 0.1 + 0.3 * u(rng)};
+      flights_.push_back(f);
+      t += f.duration + 0.02;
+      direction = -direction;
+    }
+  }
+  // Where the ball is at world time t (nullopt between flights).
+  std::optional<Eigen::Vector3d> At(double t) const {
+    for (const Flight& f : flights_) {
+      if (t < f.t0 || t > f.t0 + f.duration) continue;
+      const double s = t - f.t0, d = f.duration;
+      Eigen::Vector3d p = f.from + (f.to - f.from) * (s / d);
+      p.z() += 0.5 * 9.81 * s * (d - s);  // a parabola through both ends
+      return p;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  struct Flight {
+    double t0 = 0.0, duration = 0.0;
+    Eigen::Vector3d from, to;
+  };
+  std::vector<Flight> flights_;
+};
+
+struct Recording {
+  double fps = 60.0;
+  double offset_s = 0.0;  // world time of stamp 0
+  double drift_ppm = 0.0;
+  double seconds = 12.0;
+  double noise_px = 0.3;
+  double drop_rate = 0.0;
+  double dark_from_s = -1.0, dark_to_s = -1.0;  // stamps without frames (a camera that drops out)
+  int false_candidates = 1;                     // per frame, anywhere
+  bool lamp = true;                             // a static candidate every frame
+};
+
+// The camera's frames (stamps in its own clock) with the ball's pixel among the candidates.
+inline std::vector<FrameCandidates> Record(const Camera& camera, const Rally& rally,
+                                           const Recording& r, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, r.noise_px);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<FrameCandidates> frames;
+  const double rate = 1.0 + 1e-6 * r.drift_ppm;
+  for (int k = 0; k / r.fps < r.seconds; ++k) {
+    const double stamp = k / r.fps;
+    if (u(rng) < r.drop_rate || (stamp >= r.dark_from_s && stamp < r.dark_to_s)) continue;
+    FrameCandidates frame{stamp, {}};
+    if (const auto p = rally.At(r.offset_s + rate * stamp)) {
+      if (const auto px = camera.Project(*p); px && camera.InImage(*px)) {
+        frame.pixels.push_back(*px + Eigen::Vector2d(noise(rng), noise(rng)));
+      }
+    }
+    if (r.lamp) frame.pixels.push_back({100.0 + noise(rng), 80.0 + noise(rng)});
+    for (int i = 0; i < r.false_candidates; ++i) {
+      frame.pixels.push_back({u(rng) * camera.width, u(rng) * camera.height});
+    }
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+inline Camera SideCamera() { return p4::testing::MakeCamera("side", {0.2, -3.5, 1.5}); }
+inline Camera EndCamera() {
+  return p4::testing::MakeCamera("end", {-4.0, -0.8, 2.0}, {0.3, 0.0, 0.0},
+                                 {-0.12, 0.05, 0.001, -0.0005, 0.0});
+}
+
+}  // namespace p4::sync::testing
