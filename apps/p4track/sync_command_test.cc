@@ -76,7 +76,11 @@ TEST_F(SyncCommand, TrackSynchronisesARigWithoutClocks) {
       << out;
   EXPECT_FALSE(fs::exists(unsynced / "rig_synced.yaml"));
   const nlohmann::json in_step = EvalReport(sim_, unsynced);
-  EXPECT_GT(synced["recall"].get<double>(), 0.8) << synced.dump();
+  // Each camera's views moved to the frame set's time by their own image motion (measured:
+  // recall 99.5 %, RMSE 4.2 mm, median 0.9 mm).
+  EXPECT_GT(synced["recall"].get<double>(), 0.97) << synced.dump();
+  EXPECT_LT(synced["position_rmse_mm"].get<double>(), 8.0) << synced.dump();
+  EXPECT_LT(synced["position_median_mm"].get<double>(), 2.0) << synced.dump();
   EXPECT_LT(in_step["recall"].get<double>(), 0.5) << in_step.dump();
 }
 

@@ -14,6 +14,7 @@ namespace p4 {
 struct EvalOptions {
   double false_positive_mm = 50.0;  // a measured row farther than this from the truth is false
   int min_views = 2;                // recall counts frames seen by this many cameras (or all)
+  double gravity = 9.81;            // m/s^2: the truth carried to a row's time between its rows
   double min_visible = 0.5;         // with visibility truth: a camera sees the ball from this share
 };
 

@@ -40,7 +40,7 @@ void RunWriter::Write(const track::FrameSetResult& result) {
   const double t = ToSeconds(result.t);
   for (const auto& d : result.detections) {
     detections_ << fmt::format("{:.6f},{},{:.3f},{:.3f},{:.2f},{},{}\n", t, camera_names_[d.camera],
-                               d.pixel.x(), d.pixel.y(), d.diameter_px, d.area_px,
+                               d.observed.x(), d.observed.y(), d.diameter_px, d.area_px,
                                d.accepted ? 1 : 0);
   }
   if (result.state) {
@@ -79,8 +79,10 @@ std::vector<TruthRow> ReadTruthCsv(const std::string& path) {
     TruthRow row;
     row.t = CsvNumber(path, i, r[0]);
     row.in_play = r[10] == "1";
-    if (row.in_play)
+    if (row.in_play) {
       row.position = {CsvNumber(path, i, r[1]), CsvNumber(path, i, r[2]), CsvNumber(path, i, r[3])};
+      row.velocity = {CsvNumber(path, i, r[4]), CsvNumber(path, i, r[5]), CsvNumber(path, i, r[6])};
+    }
     out.push_back(row);
   }
   return out;

@@ -47,6 +47,7 @@ struct TruthRow {
   double t = 0.0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   bool in_play = false;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s
 };
 
 // The simulator's truth.csv. Throws p4::Error naming the file and line.

@@ -12,8 +12,29 @@
 #include "p4/segment/background_model.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/foreground_finder.h"
+#include "p4/segment/pixel_access.h"
 
 namespace p4 {
+
+namespace {
+
+// The centre of what moved in a region: its box's pixels weighted by how far their luma is from
+// the background's (the region's own centroid snaps to the 2x2 blocks of the motion mask).
+Eigen::Vector2d MovingCentre(const ImageView& image, const segment::BackgroundModel& background,
+                             const segment::Region& r) {
+  double sw = 0.0, sx = 0.0, sy = 0.0;
+  const int x0 = std::max(0, r.x0 - 1), x1 = std::min(background.width(), r.x1 + 1);
+  const int y0 = std::max(0, r.y0 - 1), y1 = std::min(background.height(), r.y1 + 1);
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      const double w = std::abs(segment::internal::LumaAt(image, x, y) - background.Luma(x, y));
+      sw += w, sx += w * x, sy += w * y;
+    }
+  }
+  return sw > 0.0 ? Eigen::Vector2d(sx / sw, sy / sw) : Eigen::Vector2d(r.cx, r.cy);
+}
+
+}  // namespace
 
 bool BallCandidateOptions::IsValid(std::string* error) const {
   if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_elongation >= 1.0)) {
@@ -76,7 +97,7 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
         seen.clear();
         for (int k = 0; k < n; ++k) {
           const segment::Region& r = regions[k];
-          const Eigen::Vector2d centre(r.cx, r.cy);
+          const Eigen::Vector2d centre = MovingCentre(view, background, r);
           seen.push_back(centre);
           if (static_cast<int>(frame.pixels.size()) >= options.per_frame ||
               r.minor_diameter < options.min_diameter_px || r.minor_diameter > largest ||
@@ -119,6 +140,12 @@ std::string DescribeClock(const Camera& camera, const sync::OffsetResult& r, boo
                        camera.clock.time_offset_s);
   }
   if (!r.found) return fmt::format("{}: not found: {}", camera.name, r.why);
+  if (r.in_step) {
+    return fmt::format(
+        "{}: in step (offset 0 within {:.3f} ms, its sigma x 2.5; {} of {} points "
+        "agree, {:.2f} px RMS)",
+        camera.name, 2.5e3 * r.sigma_s, r.agreements, r.points, r.rms_px);
+  }
   return fmt::format("{}: offset {:+.6f} s +- {:.3f} ms, {} ({} of {} points agree, {:.2f} px RMS)",
                      camera.name, r.offset_s, 1e3 * r.sigma_s,
                      r.rate_fitted ? fmt::format("drift {:+.1f} ppm", 1e6 * (r.rate - 1.0))

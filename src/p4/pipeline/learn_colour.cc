@@ -51,7 +51,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
     if (!first) first = set.t;
     result.seconds = ToSeconds(set.t - *first);
     if (result.seconds > options.max_seconds) break;
-    const track::FrameSetResult r = tracker.Process(set.t, set.images);
+    const track::FrameSetResult r = tracker.Process(set.t, set.images, set.times);
     // Only views the filter took at once: the track is confirmed, the view is the ball's.
     if (!r.state || !r.state->measured || r.tentative || !r.measurement ||
         r.measurement->cameras < 2) {
@@ -70,12 +70,12 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
     if (new_track) ++result.tracks, new_track = false;  // its first view sampled
     for (const track::Detection& d : r.detections) {
       if (!d.accepted || !set.images[d.camera]) continue;
-      samples.AddDisc(*set.images[d.camera], d.pixel, d.diameter_px, options.learning,
+      samples.AddDisc(*set.images[d.camera], d.observed, d.diameter_px, options.learning,
                       &tracker.background(d.camera));
       ++result.views;
       // What else moves in this picture (arms, heads, shirts) is what the colours must not take.
       samples.AddMoving(*set.images[d.camera], tracker.background(d.camera),
-                        std::span<const Eigen::Vector2d>(&d.pixel, 1),
+                        std::span<const Eigen::Vector2d>(&d.observed, 1),
                         options.moving_clear * d.diameter_px, options.learning);
     }
     if (result.views >= options.min_views && result.tracks >= options.min_tracks &&

@@ -143,7 +143,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       // Recorded video at its own pace: frame set t is processed at start + (t - first t).
       std::this_thread::sleep_until(paced_from + std::chrono::nanoseconds(set.t - *first_t));
     }
-    const track::FrameSetResult result = tracker.Process(set.t, set.images);
+    const track::FrameSetResult result = tracker.Process(set.t, set.images, set.times);
     published.clear();
     if (smoother) {
       for (const auto& r : smoother->Push(result)) record(r);

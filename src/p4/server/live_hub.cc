@@ -172,8 +172,8 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
     cam["detections"] = nlohmann::json::array();
     for (const auto& d : result.detections) {
       if (d.camera != c) continue;
-      cam["detections"].push_back({{"u", std::round(d.pixel.x() * 10) / 10},
-                                   {"v", std::round(d.pixel.y() * 10) / 10},
+      cam["detections"].push_back({{"u", std::round(d.observed.x() * 10) / 10},
+                                   {"v", std::round(d.observed.y() * 10) / 10},
                                    {"d", std::round(d.diameter_px * 10) / 10},
                                    {"accepted", d.accepted}});
     }

@@ -98,7 +98,7 @@ bool OffsetOptions::IsValid(std::string* error) const {
   if (!(max_offset_s > 0.0) || !(bin_s > 0.0) || bin_s > max_offset_s || !(inlier_px > 0.0) ||
       !(huber_px > 0.0) || min_agreements < 3 || !(max_second_peak > 0.0) ||
       !(max_interpolation_gap_s > 0.0) || !(min_crossing_px >= 0.0) ||
-      !(min_span_for_rate_s > 0.0)) {
+      !(min_span_for_rate_s > 0.0) || !(in_step_sigmas >= 0.0)) {
     if (error) *error = "offset search: bounds must be positive, min_agreements >= 3";
     return false;
   }
@@ -251,6 +251,10 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
     return result;
   }
   result.found = true;
+  if (!fit_rate && std::abs(offset) <= options.in_step_sigmas * result.sigma_s) {
+    result.in_step = true;
+    result.offset_s = 0.0;
+  }
   return result;
 }
 

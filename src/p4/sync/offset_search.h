@@ -39,6 +39,9 @@ struct OffsetOptions {
   // The rate is fitted when b's agreeing points span this long (drift of 50 ppm moves the
   // offset by 0.5 ms in 10 s); else rate = 1.
   double min_span_for_rate_s = 20.0;
+  // An offset within this many of its sigmas of 0 (and no drift fitted) is 0: cameras started
+  // together (one trigger, one recorder) are in step, not off by the search's noise.
+  double in_step_sigmas = 2.5;
 
   bool IsValid(std::string* error) const;
 };
@@ -49,6 +52,7 @@ struct OffsetResult {
   double offset_s = 0.0;  // world time of b's stamp 0
   double rate = 1.0;      // world seconds per second of b's clock
   bool rate_fitted = false;
+  bool in_step = false;     // the offset found was within in_step_sigmas of 0: taken as 0
   double sigma_s = 0.0;     // standard deviation of the offset
   int agreements = 0;       // b's points within inlier_px at the offset found
   int points = 0;           // b's points that could be compared (the reference's track there)

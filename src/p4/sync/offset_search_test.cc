@@ -40,6 +40,8 @@ TEST(FindOffset, RecoversWholeFrameAndSubFrameShifts) {
     EXPECT_GT(r.sigma_s, 0.0);
     EXPECT_LT(r.rms_px, 1.0);
     EXPECT_FALSE(r.rate_fitted);
+    // Cameras in step are found in step (0 exactly), a third of a frame off is not.
+    EXPECT_EQ(r.in_step, offset == 0.0) << offset;
   }
 }
 

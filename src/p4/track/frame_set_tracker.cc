@@ -18,6 +18,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "candidates, epipolar and reprojection bounds must be positive";
     return false;
   }
+  if (!(motion_max_gap_s > 0.0) || !(motion_max_px_s > 0.0)) {
+    if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
+    return false;
+  }
   if (roi_min_px < 8 || roi_max_px < roi_min_px) {
     if (error) *error = "ROI sizes: need 8 <= min <= max";
     return false;
@@ -233,13 +237,14 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
         d.pixel = {e->cx, e->cy};
       }
     }
+    d.observed = d.pixel;
     out->push_back(d);
   }
   if (keeps_background) background.Update(image, search.roi);
 }
 
-FrameSetResult FrameSetTracker::Process(TimeNs t,
-                                        std::span<const std::optional<ImageView>> images) {
+FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<ImageView>> images,
+                                        std::span<const TimeNs> times) {
   FrameSetResult result;
   result.t = t;
   const int n = rig_.size();
@@ -252,8 +257,18 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
       prediction ? prediction->second : Eigen::Matrix3d::Identity();
   std::vector<std::vector<Detection>> candidates(n);
   const int present = std::min(n, static_cast<int>(images.size()));
+  // Each camera's own time (its image's, in the rig's clock) and the ball predicted then.
+  const auto image_time = [&](int c) { return c < static_cast<int>(times.size()) ? times[c] : t; };
+  std::vector<std::optional<Eigen::Vector3d>> camera_predicted(n, predicted);
+  if (predicted) {
+    for (int c = 0; c < n; ++c) {
+      if (image_time(c) != t) camera_predicted[c] = tracker_.PredictPosition(image_time(c));
+    }
+  }
   const auto search = [&](int c) {
-    if (images[c]) SearchCamera(c, *images[c], predicted, &result.searches[c], &candidates[c]);
+    if (images[c]) {
+      SearchCamera(c, *images[c], camera_predicted[c], &result.searches[c], &candidates[c]);
+    }
   };
   if (pool_ && present > 1) {
     pool_->Run(present, search);
@@ -261,6 +276,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
     for (int c = 0; c < present; ++c) search(c);
   }
   for (int c = 0; c < n; ++c) AgeStaticSpots(c, result.searches[c]);
+  MoveToSetTime(t, image_time, result.searches, &candidates);
   const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;
   const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
@@ -327,6 +343,40 @@ FrameSetResult FrameSetTracker::Process(TimeNs t,
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
   }
   return result;
+}
+
+void FrameSetTracker::MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& image_time,
+                                    const std::vector<CameraSearch>& searches,
+                                    std::vector<std::vector<Detection>>* candidates) {
+  last_views_.resize(candidates->size());
+  for (int c = 0; c < static_cast<int>(candidates->size()); ++c) {
+    std::vector<Detection>& views = (*candidates)[c];
+    LastViews& last = last_views_[c];
+    const CameraClock& clock = rig_.cameras[c].clock;
+    LastViews now;
+    for (Detection& d : views) {
+      const TimeNs when = image_time(c) + FromSeconds(clock.RowDelay(d.observed.y()));
+      now.pixels.push_back(d.observed);
+      now.times.push_back(when);
+      if (when == t) continue;
+      // The same thing in the last image: the nearest view within the ball's reach.
+      int nearest = -1;
+      double best = 0.0;
+      for (int k = 0; k < static_cast<int>(last.pixels.size()); ++k) {
+        const double dt = ToSeconds(when - last.times[k]);
+        const double d2 = (d.observed - last.pixels[k]).squaredNorm();
+        if (dt > 0.0 && dt <= options_.motion_max_gap_s &&
+            d2 <= std::pow(options_.motion_max_px_s * dt, 2) && (nearest < 0 || d2 < best)) {
+          nearest = k, best = d2;
+        }
+      }
+      if (nearest < 0) continue;
+      const Eigen::Vector2d velocity =
+          (d.observed - last.pixels[nearest]) / ToSeconds(when - last.times[nearest]);
+      d.pixel -= velocity * ToSeconds(when - t);
+    }
+    if (searches[c].present) last = std::move(now);
+  }
 }
 
 void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result) {

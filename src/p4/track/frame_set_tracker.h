@@ -64,6 +64,10 @@ struct FrameSetOptions {
   // The window holds the ball only if a region there is the ball's size at the predicted point;
   // else the whole image is searched (after a hit the filter sends the ball into the arm).
   bool roi_needs_size = true;
+  // Cameras out of step: a view is moved to the set's time by its image velocity from the
+  // nearest view of its camera's last image within this gap and speed.
+  double motion_max_gap_s = 0.05;
+  double motion_max_px_s = 5000.0;
   bool edge_centre = true;           // the centre from the ball's edge (ball_edge.h)...
   double edge_max_elongation = 2.5;  // ...for views at most this much longer than wide
   segment::EdgeCentreOptions edge;
@@ -108,10 +112,11 @@ struct FrameSetOptions {
 // One candidate region of one camera.
 struct Detection {
   int camera = 0;
-  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // region centroid
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // the centre, moved to the set's time
   double diameter_px = 0.0;                         // the ball's diameter (blur-proof minor axis)
   int area_px = 0;
-  bool accepted = false;  // part of this time-stamp's measurement
+  bool accepted = false;                               // part of this time-stamp's measurement
+  Eigen::Vector2d observed = Eigen::Vector2d::Zero();  // the centre as the camera saw it
 };
 
 struct CameraSearch {
@@ -155,7 +160,13 @@ class FrameSetTracker {
                   const FrameSetOptions& options);
 
   // images[c] is camera c's frame at t, or nullopt when the camera has none in this set.
-  FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images);
+  // Cameras out of step: times[c] is image c's own time (its top row's, in the rig's clock;
+  // empty: all at t, the earliest). With a track, each camera is searched where the ball is
+  // predicted at its own time, and each view (at its time plus its row's delay, CameraClock) is
+  // moved by the predicted image motion from then to t before the views are associated and
+  // triangulated: the 3D measurement is at t.
+  FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images,
+                         std::span<const TimeNs> times = {});
 
   const BallTracker& tracker() const { return tracker_; }
   // Camera c's background model (empty unless a detector keeps one), as of the last Process.
@@ -170,6 +181,11 @@ class FrameSetTracker {
   // that camera's state (so cameras may run in parallel).
   void SearchCamera(int c, const ImageView& image, const std::optional<Eigen::Vector3d>& predicted,
                     CameraSearch* search, std::vector<Detection>* out);
+  // Moves each view to the set's time t by its own image motion: the velocity from the nearest
+  // view of the same camera's last image (Process). Remembers this set's views for the next.
+  void MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& image_time,
+                     const std::vector<CameraSearch>& searches,
+                     std::vector<std::vector<Detection>>* candidates);
   // A 3D candidate: detections of several views that agree (epipolar, reprojection, size).
   struct Hypothesis {
     std::vector<std::pair<int, int>> members;  // (camera, candidate)
@@ -212,6 +228,12 @@ class FrameSetTracker {
   // Per camera: its colour regions measured by coverage (when the background measures).
   std::vector<std::vector<std::optional<segment::CoverageRegion>>> measured_;
   std::vector<std::vector<StaticSpot>> static_spots_;
+  // Per camera: its last image's views as seen and their times (the rows' delays included).
+  struct LastViews {
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<TimeNs> times;
+  };
+  std::vector<LastViews> last_views_;
   std::vector<std::vector<segment::Region>> regions_;  // per camera
   std::unique_ptr<CameraPool> pool_;
   TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
