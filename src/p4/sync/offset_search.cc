@@ -92,70 +92,12 @@ std::optional<double> Residual(const std::vector<IdealTrack>& tracks, const Line
   return best;
 }
 
-}  // namespace
-
-bool OffsetOptions::IsValid(std::string* error) const {
-  if (!(max_offset_s > 0.0) || !(bin_s > 0.0) || bin_s > max_offset_s || !(inlier_px > 0.0) ||
-      !(huber_px > 0.0) || min_agreements < 3 || !(max_second_peak > 0.0) ||
-      !(max_interpolation_gap_s > 0.0) || !(min_crossing_px >= 0.0) ||
-      !(min_span_for_rate_s > 0.0) || !(in_step_sigmas >= 0.0)) {
-    if (error) *error = "offset search: bounds must be positive, min_agreements >= 3";
-    return false;
-  }
-  return true;
-}
-
-OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& reference_tracks,
-                        const Camera& b, const std::vector<Track2d>& b_tracks,
-                        const OffsetOptions& options) {
+// The fine fit from a coarse offset: a scan of +-2 bins, then iteratively reweighted
+// Gauss-Newton on the epipolar distances (the rate too over long recordings); the agreement and
+// the offset's sigma at the end.
+OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<LinePoint>& points,
+                       double coarse, const OffsetOptions& options) {
   OffsetResult result;
-  const std::vector<IdealTrack> ref = ToIdeal(reference, reference_tracks);
-  std::vector<LinePoint> points;
-  for (const Track2d& track : b_tracks) {
-    for (const TrackPoint& p : track.points) {
-      points.push_back({p.t, EpipolarLine(b, p.pixel, reference)});
-    }
-  }
-  if (ref.empty() || points.empty()) {
-    result.why = fmt::format("the ball was not seen moving ({} track(s) in {}, {} in {})",
-                             ref.size(), reference.name, b_tracks.size(), b.name);
-    return result;
-  }
-  // 1. Coarse: votes of every crossing.
-  const int bins = 2 * static_cast<int>(std::ceil(options.max_offset_s / options.bin_s)) + 1;
-  const int centre = bins / 2;
-  std::vector<double> votes(static_cast<std::size_t>(bins), 0.0);
-  for (const LinePoint& point : points) {
-    for (const IdealTrack& track : ref) {
-      for (std::size_t i = 0; i + 1 < track.t.size(); ++i) {
-        const double dt = track.t[i + 1] - track.t[i];
-        if (dt > options.max_interpolation_gap_s) continue;
-        const double d0 = point.line.dot(track.px[i].homogeneous());
-        const double d1 = point.line.dot(track.px[i + 1].homogeneous());
-        if ((d0 <= 0.0) == (d1 <= 0.0) || std::abs(d0 - d1) < options.min_crossing_px) continue;
-        const double crossing = track.t[i] + d0 / (d0 - d1) * dt;
-        const int bin =
-            centre + static_cast<int>(std::lround((crossing - point.s) / options.bin_s));
-        if (bin >= 0 && bin < bins) votes[static_cast<std::size_t>(bin)] += 1.0;
-      }
-    }
-  }
-  // Smoothed over three bins (a crossing near a bin's edge).
-  std::vector<double> smooth(votes.size(), 0.0);
-  for (int i = 0; i < bins; ++i) {
-    for (int k = std::max(0, i - 1); k <= std::min(bins - 1, i + 1); ++k) smooth[i] += votes[k];
-  }
-  const int peak =
-      static_cast<int>(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
-  double second = 0.0;
-  const int exclusion = std::max(5, static_cast<int>(std::ceil(0.01 / options.bin_s)));
-  for (int i = 0; i < bins; ++i) {
-    if (std::abs(i - peak) > exclusion) second = std::max(second, smooth[i]);
-  }
-  result.peak_ratio = smooth[peak] > 0.0 ? second / smooth[peak] : 1.0;
-  const double coarse = (peak - centre) * options.bin_s;
-
-  // 2. Fine: scan around the peak, then Gauss-Newton on the robust distances.
   const double gap = options.max_interpolation_gap_s;
   const auto cost = [&](double offset) {
     double sum = 0.0;
@@ -218,7 +160,6 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   result.offset_s = offset;
   result.rate = rate;
   result.rate_fitted = fit_rate;
-  // Agreement at the offset found.
   double squares = 0.0;
   for (const LinePoint& p : points) {
     const auto r = Residual(ref, p, offset + rate * p.s, gap);
@@ -236,6 +177,98 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
     const double inverse = fit_rate ? normal.inverse()(0, 0) : 1.0 / normal(0, 0);
     result.sigma_s = std::sqrt(std::max(0.0, variance * inverse));
   }
+  return result;
+}
+
+}  // namespace
+
+bool OffsetOptions::IsValid(std::string* error) const {
+  if (!(max_offset_s > 0.0) || !(bin_s > 0.0) || bin_s > max_offset_s || !(inlier_px > 0.0) ||
+      !(huber_px > 0.0) || min_agreements < 3 || !(max_second_peak > 0.0) ||
+      !(max_interpolation_gap_s > 0.0) || !(min_crossing_px >= 0.0) ||
+      !(min_span_for_rate_s > 0.0) || !(in_step_sigmas >= 0.0)) {
+    if (error) *error = "offset search: bounds must be positive, min_agreements >= 3";
+    return false;
+  }
+  return true;
+}
+
+OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& reference_tracks,
+                        const Camera& b, const std::vector<Track2d>& b_tracks,
+                        const OffsetOptions& options) {
+  OffsetResult result;
+  const std::vector<IdealTrack> ref = ToIdeal(reference, reference_tracks);
+  std::vector<LinePoint> points;
+  for (const Track2d& track : b_tracks) {
+    for (const TrackPoint& p : track.points) {
+      points.push_back({p.t, EpipolarLine(b, p.pixel, reference)});
+    }
+  }
+  if (ref.empty() || points.empty()) {
+    result.why = fmt::format("the ball was not seen moving ({} track(s) in {}, {} in {})",
+                             ref.size(), reference.name, b_tracks.size(), b.name);
+    return result;
+  }
+  // 1. Coarse: votes of every crossing.
+  const int bins = 2 * static_cast<int>(std::ceil(options.max_offset_s / options.bin_s)) + 1;
+  const int centre = bins / 2;
+  std::vector<double> votes(static_cast<std::size_t>(bins), 0.0);
+  for (const LinePoint& point : points) {
+    for (const IdealTrack& track : ref) {
+      for (std::size_t i = 0; i + 1 < track.t.size(); ++i) {
+        const double dt = track.t[i + 1] - track.t[i];
+        if (dt > options.max_interpolation_gap_s) continue;
+        const double d0 = point.line.dot(track.px[i].homogeneous());
+        const double d1 = point.line.dot(track.px[i + 1].homogeneous());
+        if ((d0 <= 0.0) == (d1 <= 0.0) || std::abs(d0 - d1) < options.min_crossing_px) continue;
+        const double crossing = track.t[i] + d0 / (d0 - d1) * dt;
+        const int bin =
+            centre + static_cast<int>(std::lround((crossing - point.s) / options.bin_s));
+        if (bin >= 0 && bin < bins) votes[static_cast<std::size_t>(bin)] += 1.0;
+      }
+    }
+  }
+  // Smoothed over three bins (a crossing near a bin's edge).
+  std::vector<double> smooth(votes.size(), 0.0);
+  for (int i = 0; i < bins; ++i) {
+    for (int k = std::max(0, i - 1); k <= std::min(bins - 1, i + 1); ++k) smooth[i] += votes[k];
+  }
+  // The highest peaks, each at least `exclusion` bins from the others.
+  const int exclusion = std::max(5, static_cast<int>(std::ceil(0.01 / options.bin_s)));
+  std::vector<int> peaks;
+  {
+    std::vector<int> order(static_cast<std::size_t>(bins));
+    for (int i = 0; i < bins; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return smooth[a] > smooth[b]; });
+    for (int i : order) {
+      if (static_cast<int>(peaks.size()) >= options.peaks || smooth[i] <= 0.0) break;
+      if (std::none_of(peaks.begin(), peaks.end(),
+                       [&](int p) { return std::abs(p - i) <= exclusion; })) {
+        peaks.push_back(i);
+      }
+    }
+  }
+  if (peaks.empty()) peaks.push_back(centre);
+  // 2. Fine, from each peak: the one where most of b's points agree wins (a rally's back and
+  // forth makes chance crossings repeat; the votes alone can favour a wrong period).
+  std::vector<OffsetResult> fits;
+  for (int peak : peaks) {
+    fits.push_back(FitAround(ref, points, (peak - centre) * options.bin_s, options));
+  }
+  std::sort(fits.begin(), fits.end(), [](const OffsetResult& a, const OffsetResult& b) {
+    return a.agreements > b.agreements;
+  });
+  result = fits.front();
+  // The runner-up must be a different offset (not the same one reached from a nearby peak).
+  result.peak_ratio = 0.0;
+  for (std::size_t k = 1; k < fits.size(); ++k) {
+    if (std::abs(fits[k].offset_s - result.offset_s) > exclusion * options.bin_s) {
+      result.peak_ratio =
+          result.agreements > 0 ? static_cast<double>(fits[k].agreements) / result.agreements : 1.0;
+      break;
+    }
+  }
+  const double offset = result.offset_s;
   if (result.agreements < options.min_agreements) {
     result.why = fmt::format(
         "too little ball motion seen by both {} and {}: {} point(s) agree at the best offset "
@@ -246,12 +279,12 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   if (result.peak_ratio > options.max_second_peak) {
     result.why = fmt::format(
         "the ball's motion fits two offsets of {} against {} almost as well ({:.0f} % of the "
-        "votes at the second); record a longer stretch of play",
+        "points agree at the second); record a longer stretch of play",
         b.name, reference.name, 100.0 * result.peak_ratio);
     return result;
   }
   result.found = true;
-  if (!fit_rate && std::abs(offset) <= options.in_step_sigmas * result.sigma_s) {
+  if (!result.rate_fitted && std::abs(offset) <= options.in_step_sigmas * result.sigma_s) {
     result.in_step = true;
     result.offset_s = 0.0;
   }

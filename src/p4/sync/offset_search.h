@@ -12,7 +12,9 @@
 //      epipolar distances between b's points and the reference's track interpolated at their
 //      world times (iteratively reweighted Gauss-Newton), with its standard deviation from the
 //      residuals.
-// Refuses (found = false, `why` says) when too few points agree or a second offset is as good.
+// The fine fit runs from each of the highest coarse peaks; the offset where most points agree
+// wins. Refuses (found = false, `why` says) when too few points agree or a second offset is
+// nearly as good.
 //
 // Reference track times are world seconds (the reference's clock applied, rows' delays
 // included); b's are its own stamps (its row delays included). Pixels are each camera's real
@@ -33,7 +35,8 @@ struct OffsetOptions {
   double inlier_px = 3.0;        // an epipolar distance that agrees (reference's ideal pixels)
   double huber_px = 1.0;         // the fine fit's robust loss: quadratic within, linear beyond
   int min_agreements = 40;       // points that agree at the offset found
-  double max_second_peak = 0.6;  // a second coarse peak (> 2 bins away) this close refuses
+  int peaks = 5;                 // coarse peaks fitted finely (10 ms apart at least)
+  double max_second_peak = 0.6;  // a second offset where this share as many points agree refuses
   double max_interpolation_gap_s = 0.05;  // reference points farther apart are not joined
   double min_crossing_px = 0.2;  // a segment must cross a line by this much (not run along it)
   // The rate is fitted when b's agreeing points span this long (drift of 50 ppm moves the
@@ -57,7 +60,7 @@ struct OffsetResult {
   int agreements = 0;       // b's points within inlier_px at the offset found
   int points = 0;           // b's points that could be compared (the reference's track there)
   double rms_px = 0.0;      // of the agreeing points' epipolar distances
-  double peak_ratio = 0.0;  // the second coarse peak's votes over the first's
+  double peak_ratio = 0.0;  // points agreeing at the runner-up offset over those at the best
 };
 
 OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& reference_tracks,
