@@ -276,7 +276,8 @@ int Run(const SimulateArgs& a) {
               std::abs(static_cast<double>(row) / truth_fps - w.TopRow(k)) <= 0.5 / w.fps) {
             visibility[c][row] = static_cast<float>(seen);
           }
-          const double stamp = static_cast<double>(k) / w.fps + jitter(rng);
+          // The first frame's stamp is the clock's zero (a reader counts from it): unjittered.
+          const double stamp = static_cast<double>(k) / w.fps + (k > 0 ? jitter(rng) : 0.0);
           writer.Write(image, FromSeconds(stamp));
         }
         writer.Close();
@@ -396,7 +397,8 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--drop-rate", args->drop_rate, "Share of frames each camera loses")
       ->check(CLI::Range(0.0, 0.5));
   cmd->add_option("--stamp-jitter-ms", args->stamp_jitter_ms,
-                  "Noise of the timestamps written (sigma, ms); the exposures stay regular")
+                  "Noise of the timestamps written (sigma, ms); the exposures stay regular and the "
+                  "first frame's stamp is exact")
       ->check(CLI::Range(0.0, 10.0));
   return [args]() { return Run(*args); };
 }

@@ -21,6 +21,7 @@ struct SyncArgs {
   std::string rig, out, classes, ball = "any";
   std::vector<std::string> sources;
   double max_offset = 5.0, seconds = 0.0;
+  bool rolling_shutter = false;
 };
 
 int Run(const SyncArgs& a) {
@@ -42,6 +43,7 @@ int Run(const SyncArgs& a) {
   candidates.seconds = a.seconds > 0.0 ? a.seconds : std::max(15.0, 2.0 * a.max_offset + 5.0);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;
+  options.offsets.fit_line_times = a.rolling_shutter;
   spdlog::info("finding the clocks of {} camera(s) from the ball in the first {:.0f} s of {}",
                rig.size(), candidates.seconds,
                a.sources.size() == 1 ? "the source" : "each source");
@@ -91,6 +93,9 @@ std::function<int()> AddSyncCommand(CLI::App& app) {
   cmd->add_option("--seconds", args->seconds,
                   "Read this much of each recording (default: 2 x --max-offset + 5 s, at least 15)")
       ->check(CLI::Range(0.0, 3600.0));
+  cmd->add_flag("--rolling-shutter", args->rolling_shutter,
+                "The cameras read their rows out one after another (phones, most webcams): find "
+                "each camera's line time from the ball too (added to the rig's line_time_s)");
   return [args]() { return Run(*args); };
 }
 

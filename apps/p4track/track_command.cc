@@ -32,7 +32,7 @@ struct TrackArgs {
   std::string first_server = "A";
   int best_of = 5;
   bool no_referee = false;
-  bool no_sync = false;
+  bool no_sync = false, rolling_shutter = false;
   double max_offset = 5.0;
   bool ui = false, realtime = false, loop = false;
   std::string layout;
@@ -61,6 +61,7 @@ Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
   candidates.seconds = std::max(15.0, 2.0 * a.max_offset + 5.0);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;
+  options.offsets.fit_line_times = a.rolling_shutter;
   spdlog::info(
       "{} gives no time offsets: finding them from the ball in the first {:.0f} s (--no-sync: "
       "take the cameras as in step)",
@@ -267,6 +268,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_flag("--no-sync", args->no_sync,
                 "Take the cameras as in step when the rig gives no time offsets (default: found "
                 "from the ball first, as `p4track sync` does)");
+  cmd->add_flag("--rolling-shutter", args->rolling_shutter,
+                "When syncing: the cameras read their rows out one after another (phones, most "
+                "webcams); find each camera's line time from the ball too");
   cmd->add_option("--max-offset", args->max_offset,
                   "When syncing: search time offsets up to +- this many seconds")
       ->check(CLI::Range(0.05, 60.0))

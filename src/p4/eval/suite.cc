@@ -1,6 +1,7 @@
 #include "p4/eval/suite.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +25,9 @@ double Round(double x, double step) { return std::round(x / step) * step; }
 
 }  // namespace
 
-std::vector<std::string> SuiteFamilies() { return {"sports", "webcam", "white", "mono"}; }
+std::vector<std::string> SuiteFamilies() {
+  return {"sports", "webcam", "white", "mono", "unsync", "unsync-webcam", "phone"};
+}
 
 uint64_t SuiteSeed(const std::string& set, int k) {
   if (k < 1 || k > 999) throw Error(fmt::format("scene {}: must be in [1, 999]", k));
@@ -66,10 +69,25 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
     // At most ~900 frames a camera: the suite's time goes where the variety is.
     s.seconds = Round(std::min(6.0, 900.0 / s.fps), 0.1);
   };
+  // Free-running cameras: camera 1 started up to 5 s before camera 0 (both record all the
+  // play) at a random phase, drifting, its stamps jittered by up to `jitter_ms`, a few frames
+  // lost; the twin is the same play by cameras triggered in step. 10 s of play.
+  const auto out_of_step = [&](double jitter_ms) {
+    s.start_offsets_s.assign(static_cast<std::size_t>(s.cameras), 0.0);
+    s.drift_ppm.assign(static_cast<std::size_t>(s.cameras), 0.0);
+    for (int c = 1; c < s.cameras; ++c) {
+      s.start_offsets_s[c] = Round(-d.U(0.05, 4.9), 1e-5);
+      s.drift_ppm[c] = Round(d.U(-50.0, 50.0), 0.1);
+    }
+    s.stamp_jitter_ms = Round(d.U(0.0, jitter_ms), 0.01);
+    s.drop_rate = Round(d.U(0.0, 0.02), 0.001);
+    s.seconds = 10.0;
+    s.twin = "in-step";
+  };
   if (family == "sports") {
     sports_camera();
     s.ball = d.P(0.75) ? "orange" : "yellow";
-  } else if (family == "webcam") {
+  } else if (family == "webcam" || family == "unsync-webcam") {
     s.cameras = d.I(2, 3);
     s.width = 640, s.height = 480;
     s.fps = d.P(0.5) ? 25 : 30;
@@ -82,6 +100,7 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
     s.defocus_px = Round(d.U(0.3, 1.0), 0.1);
     s.seconds = 8.0;
     s.ball = "orange";
+    if (family == "unsync-webcam") out_of_step(1.0);
   } else if (family == "white") {
     sports_camera();
     s.ball = "white";
@@ -91,8 +110,31 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
     sports_camera();
     s.cameras = 1;
     s.ball = d.P(0.75) ? "orange" : "yellow";
+  } else if (family == "unsync") {
+    sports_camera();
+    s.cameras = 2;
+    if (s.width > 1280) s.width = 1280, s.height = 720;
+    s.fps = 60;
+    s.camera_fps = {60, d.P(1.0 / 3.0) ? 120 : 60};
+    s.exposure_ms = Round(d.U(0.5, 4.0), 0.1);
+    s.ball = d.P(0.75) ? "orange" : "yellow";
+    out_of_step(0.5);
+  } else if (family == "phone") {
+    sports_camera();
+    s.cameras = 2;
+    s.width = 1920, s.height = 1080;
+    s.fps = d.P(0.5) ? 30 : 60;
+    s.exposure_ms = Round(d.U(1.0, 4.0), 0.1);
+    s.fov_deg = Round(d.U(60.0, 75.0), 1.0);
+    s.distortion = true;
+    s.ball = d.P(0.75) ? "orange" : "yellow";
+    out_of_step(1.0);
+    // The sensor is read out within the frame: 15-25 ms at 30 fps, 10-16 ms at 60 fps.
+    s.rolling_shutter_ms = Round(s.fps == 30 ? d.U(15.0, 25.0) : d.U(10.0, 16.0), 0.1);
+    s.twin = "global-shutter";
   } else {
-    throw Error("family '" + family + "': use sports, webcam, white or mono");
+    throw Error("family '" + family + "': use one of " +
+                fmt::format("{}", fmt::join(families, ", ")));
   }
   return s;
 }
@@ -118,7 +160,40 @@ std::vector<std::string> SuiteScene::SimulateArgs() const {
   std::vector<std::string> a = {"simulate"};
   for (const auto& [flag, value] : options) a.insert(a.end(), {flag, value});
   if (distortion) a.push_back("--distortion");
+  const auto list = [&](const char* flag, const auto& values, const char* format) {
+    if (values.empty()) return;
+    std::string joined;
+    for (const auto& v : values) {
+      joined += (joined.empty() ? "" : ",") + fmt::format(fmt::runtime(format), v);
+    }
+    a.insert(a.end(), {flag, joined});
+  };
+  list("--start-offsets", start_offsets_s, "{:.5f}");
+  list("--camera-fps", camera_fps, "{}");
+  list("--drift-ppm", drift_ppm, "{:.1f}");
+  const std::pair<const char*, double> timing[] = {{"--rolling-shutter-ms", rolling_shutter_ms},
+                                                   {"--drop-rate", drop_rate},
+                                                   {"--stamp-jitter-ms", stamp_jitter_ms}};
+  for (const auto& [flag, value] : timing) {
+    if (value > 0.0) a.insert(a.end(), {flag, fmt::format("{:.3f}", value)});
+  }
   return a;
+}
+
+SuiteScene SuiteScene::Twin() const {
+  if (twin != "in-step" && twin != "global-shutter") {
+    throw Error("scene " + family + "-" + std::to_string(seed) + ": no twin");
+  }
+  SuiteScene t = *this;
+  t.twin.clear();
+  t.rolling_shutter_ms = 0.0;
+  if (twin == "in-step") {
+    t.start_offsets_s.clear();
+    t.drift_ppm.clear();
+    t.drop_rate = 0.0;
+    t.stamp_jitter_ms = 0.0;
+  }
+  return t;
 }
 
 nlohmann::ordered_json SuiteScene::ToJson() const {
@@ -137,7 +212,14 @@ nlohmann::ordered_json SuiteScene::ToJson() const {
           {"defocus_px", defocus_px},
           {"look", look},
           {"ball", ball},
-          {"seconds", seconds}};
+          {"seconds", seconds},
+          {"start_offsets_s", start_offsets_s},
+          {"camera_fps", camera_fps},
+          {"drift_ppm", drift_ppm},
+          {"rolling_shutter_ms", rolling_shutter_ms},
+          {"drop_rate", drop_rate},
+          {"stamp_jitter_ms", stamp_jitter_ms},
+          {"twin", twin}};
 }
 
 double BallPixels(const Rig& rig, const std::vector<TruthRow>& truth) {

@@ -13,6 +13,16 @@
 //   white   as sports with a white ball (a random hall, or the white and broadcast presets with
 //           lamps, white lines, light walls and lettering);
 //   mono    one camera, 1280x720 or 1920x1080 at 60-120 fps.
+// Cameras out of step (each scene beside its twin, the same play shot another way):
+//   unsync         2 cameras 960x540 or 1280x720 at 60 fps (a third of the rigs: the second at
+//                  120 fps), the second started 0.05-4.9 s before the first (both record all the
+//                  play; the search runs over +-5 s) at a random phase, drifting up to +-50 ppm,
+//                  stamps jittered by up to 0.5 ms, up to 2 % of frames dropped; 10 s of play;
+//                  twin: the same rig triggered in step.
+//   unsync-webcam  the webcam family's rigs at random offsets and phases; twin: in step.
+//   phone          2 phones 1920x1080 at 30 or 60 fps with a rolling shutter (readout 15-25 ms
+//                  at 30 fps, 10-16 ms at 60), random offsets and phases; twin: the same phones
+//                  with a global shutter.
 // Pure: no files, clocks or processes.
 #pragma once
 
@@ -43,15 +53,28 @@ struct SuiteScene {
   std::string ball = "orange";  // orange, yellow or white
   double seconds = 6.0;         // of play
   int points = 2;
+  // Cameras out of step (`simulate` --start-offsets etc.): per camera start (s; camera 0's is 0),
+  // frame rate and drift (ppm); empty: all 0 / fps / 0.
+  std::vector<double> start_offsets_s;
+  std::vector<int> camera_fps;
+  std::vector<double> drift_ppm;
+  double rolling_shutter_ms = 0.0, drop_rate = 0.0, stamp_jitter_ms = 0.0;
+  // The twin measured beside the scene: "in-step" (the same play by cameras triggered together,
+  // each at its own rate, the clocks known) or "global-shutter" (the same cameras without rolling
+  // shutter); empty: none.
+  std::string twin;
 
   // `p4track simulate` arguments for the scene (without the program and --out).
   std::vector<std::string> SimulateArgs() const;
   // The colour hint `p4track track --ball` takes for this scene's ball.
   std::string TrackBall() const { return ball; }
   nlohmann::ordered_json ToJson() const;
+  // The twin scene (precondition: twin is not empty).
+  SuiteScene Twin() const;
 };
 
-std::vector<std::string> SuiteFamilies();  // sports, webcam, white, mono
+// sports, webcam, white, mono, unsync, unsync-webcam, phone
+std::vector<std::string> SuiteFamilies();
 
 // Scene k (1-based) of a family and set. Throws p4::Error for an unknown family or set.
 SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int k);

@@ -37,7 +37,7 @@ Eigen::Vector2d MovingCentre(const ImageView& image, const segment::BackgroundMo
 }  // namespace
 
 bool BallCandidateOptions::IsValid(std::string* error) const {
-  if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_elongation >= 1.0)) {
+  if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_speed_px_s > 0.0)) {
     if (error) *error = "ball candidates: seconds, per_frame, sizes must be positive";
     return false;
   }
@@ -68,6 +68,8 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
       }
       // The ball is no nearer than a metre.
       const double largest = 1.3 * 2.0 * table::kBallRadius * camera.fx;
+      const double fps = reader.info().fps > 0.0 ? reader.info().fps : 30.0;
+      const double longest_streak = options.max_speed_px_s / fps;
       segment::BlobFinder finder;
       // What differs from a background learnt as the frames come (the colour alone finds
       // banners, shirts and lettering of the ball's colour; with AnyColour, motion alone).
@@ -101,7 +103,7 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
           seen.push_back(centre);
           if (static_cast<int>(frame.pixels.size()) >= options.per_frame ||
               r.minor_diameter < options.min_diameter_px || r.minor_diameter > largest ||
-              r.major_diameter > options.max_elongation * std::max(1.0, r.minor_diameter)) {
+              r.major_diameter > r.minor_diameter + longest_streak) {
             continue;
           }
           const bool still = std::any_of(last.begin(), last.end(), [&](const Eigen::Vector2d& p) {
@@ -135,9 +137,14 @@ sync::RigSyncResult SyncFromSources(const Rig& rig, const std::vector<std::strin
 }
 
 std::string DescribeClock(const Camera& camera, const sync::OffsetResult& r, bool reference) {
+  const std::string readout =
+      camera.clock.line_time_s > 0.0
+          ? fmt::format(", rows read out over {:.1f} ms",
+                        1e3 * camera.clock.line_time_s * std::max(1, camera.height - 1))
+          : std::string();
   if (reference) {
-    return fmt::format("{}: the rig's clock (offset {:+.6f} s)", camera.name,
-                       camera.clock.time_offset_s);
+    return fmt::format("{}: the rig's clock (offset {:+.6f} s){}", camera.name,
+                       camera.clock.time_offset_s, readout);
   }
   if (!r.found) return fmt::format("{}: not found: {}", camera.name, r.why);
   if (r.in_step) {
@@ -146,11 +153,12 @@ std::string DescribeClock(const Camera& camera, const sync::OffsetResult& r, boo
         "agree, {:.2f} px RMS)",
         camera.name, 2.5e3 * r.sigma_s, r.agreements, r.points, r.rms_px);
   }
-  return fmt::format("{}: offset {:+.6f} s +- {:.3f} ms, {} ({} of {} points agree, {:.2f} px RMS)",
-                     camera.name, r.offset_s, 1e3 * r.sigma_s,
-                     r.rate_fitted ? fmt::format("drift {:+.1f} ppm", 1e6 * (r.rate - 1.0))
-                                   : std::string("drift not fitted (under 20 s of agreeing play)"),
-                     r.agreements, r.points, r.rms_px);
+  return fmt::format(
+      "{}: offset {:+.6f} s +- {:.3f} ms, {}{} ({} of {} points agree, {:.2f} px RMS)", camera.name,
+      r.offset_s, 1e3 * r.sigma_s,
+      r.rate_fitted ? fmt::format("drift {:+.1f} ppm", 1e6 * (r.rate - 1.0))
+                    : std::string("drift not fitted (under 20 s of agreeing play)"),
+      readout, r.agreements, r.points, r.rms_px);
 }
 
 }  // namespace p4

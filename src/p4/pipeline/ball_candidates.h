@@ -22,9 +22,11 @@ struct BallCandidateOptions {
   double seconds = 15.0;  // from each source's start
   int per_frame = 6;      // the largest regions of the ball's size
   double min_diameter_px = 1.5;
-  double max_elongation = 4.0;  // a blurred ball is a short streak, a shirt's edge is long
-  double still_px = 1.5;        // a region this near one of the last frame's did not move: dropped
-  double moving_sigmas = 3.0;   // pixels must differ from the learnt background by this much
+  // A blurred ball is a streak no longer than its width plus its path over a whole frame (a
+  // webcam's exposure can last the frame) at the fastest image speed (sync::Track2dOptions').
+  double max_speed_px_s = 4000.0;
+  double still_px = 1.5;       // a region this near one of the last frame's did not move: dropped
+  double moving_sigmas = 3.0;  // pixels must differ from the learnt background by this much
 
   bool IsValid(std::string* error) const;
 };

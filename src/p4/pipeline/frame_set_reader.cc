@@ -79,11 +79,12 @@ bool FrameSetReader::Next(FrameSet* set) {
   set->t = *t;
   set->images.assign(sources_.size(), std::nullopt);
   set->times.assign(sources_.size(), *t);
+  double fastest = 0.0;
+  for (const Source& s : sources_) fastest = std::max(fastest, s.reader->info().fps);
+  const TimeNs tolerance = FromSeconds(0.5 / (fastest > 0 ? fastest : 30.0));
   for (std::size_t i = 0; i < sources_.size(); ++i) {
     Source& s = sources_[i];
     if (!s.has_frame || s.consumed) continue;
-    const double fps = s.reader->info().fps > 0 ? s.reader->info().fps : 30.0;
-    const TimeNs tolerance = FromSeconds(0.5 / fps);
     if (std::llabs(s.pts - *t) <= tolerance) {
       set->images[i] = s.view;
       set->times[i] = s.pts;

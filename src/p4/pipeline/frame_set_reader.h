@@ -1,11 +1,13 @@
 // N video sources grouped into time-stamped frame sets (DESIGN.md "The loop"). A set takes the
-// earliest pending frame's time; each source contributes its frame when it lies within half a
-// frame period of it. A source that ends early, or lacks a frame, leaves its camera out of the
-// set; the run goes on until every source has ended. A live source (device, stream) that fails
-// while reading ends there too, with its error kept in ended_with_error().
-// With `loop`, video files start again when every source has ended, their times continuing
-// (shifted by the span played plus one frame period), so a recording plays for as long as the
-// run lasts (a kiosk at a club, or a live view that must stay up until a viewer has seen it).
+// earliest pending frame's time; each source contributes its frame when it lies within half the
+// fastest source's frame period of it (a 60 fps camera beside a 120 fps one joins the set of
+// the 120 fps frame taken with it, not the one half its period before). A source that ends early,
+// or lacks a frame, leaves its camera out of the set; the run goes on until every source has ended.
+// A live source (device, stream) that fails while reading ends there too, with its error kept in
+// ended_with_error(). With `loop`, video files start again when every source has ended, their times
+// continuing (shifted by the span played plus one frame period), so a recording plays for as long
+// as the run lasts (a kiosk at a club, or a live view that must stay up until a viewer has seen
+// it).
 #pragma once
 
 #include <memory>

@@ -46,6 +46,26 @@ TEST(FrameSetReader, GroupsTheCamerasFramesByTime) {
   EXPECT_EQ(reader.loops(), 0);
 }
 
+TEST(FrameSetReader, ASlowCameraJoinsTheFastOnesFrameTakenWithIt) {
+  // Triggered together at 60 and 120 fps: each 60 fps frame joins the set of the 120 fps frame
+  // of its own time (not the one half its period before, which is within its own half period).
+  const std::string slow = WriteClip("p4_fsr_60.mkv", 60, 5),
+                    fast = WriteClip("p4_fsr_120.mkv", 120, 10);
+  FrameSetReader reader({slow, fast});
+  FrameSet set;
+  int sets = 0, both = 0;
+  while (reader.Next(&set)) {
+    ++sets;
+    ASSERT_TRUE(set.images[1].has_value());
+    if (set.images[0]) {
+      ++both;
+      EXPECT_NEAR(ToSeconds(set.times[0] - set.times[1]), 0.0, kMs);
+    }
+  }
+  EXPECT_EQ(sets, 10);
+  EXPECT_EQ(both, 5);
+}
+
 TEST(FrameSetReader, CameraClocksPutEachFrameAtItsRigTime) {
   // b started recording 2.5 frames after a (a known offset): its frames are grouped with a's
   // nearest ones and each image keeps its own time.

@@ -17,6 +17,7 @@ namespace {
 struct IdealTrack {
   std::vector<double> t;
   std::vector<Eigen::Vector2d> px;
+  std::vector<double> rows;  // the real pixels' rows (the rolling shutter's)
 };
 
 std::vector<IdealTrack> ToIdeal(const Camera& camera, const std::vector<Track2d>& tracks) {
@@ -25,6 +26,7 @@ std::vector<IdealTrack> ToIdeal(const Camera& camera, const std::vector<Track2d>
     IdealTrack ideal;
     for (const TrackPoint& p : track.points) {
       ideal.t.push_back(p.t);
+      ideal.rows.push_back(p.pixel.y());
       ideal.px.push_back(camera.IdealPixelFromNormalized(camera.NormalizedFromPixel(p.pixel)));
     }
     out.push_back(std::move(ideal));
@@ -36,6 +38,7 @@ std::vector<IdealTrack> ToIdeal(const Camera& camera, const std::vector<Track2d>
 struct LinePoint {
   double s = 0.0;  // b's stamp
   Eigen::Vector3d line = Eigen::Vector3d::Zero();
+  double row = 0.0;  // b's real pixel row
 };
 
 // The reference's position at world time t on `track`, interpolated through the (up to) three
@@ -90,6 +93,36 @@ std::optional<double> Residual(const std::vector<IdealTrack>& tracks, const Line
     }
   }
   return best;
+}
+
+// The reference's row at world time t on `track` (linear between the points around t).
+double RowAt(const IdealTrack& track, double t) {
+  const auto it = std::upper_bound(track.t.begin(), track.t.end(), t);
+  if (it == track.t.begin()) return track.rows.front();
+  if (it == track.t.end()) return track.rows.back();
+  const auto i = static_cast<std::size_t>(it - track.t.begin()) - 1;
+  const double f = (t - track.t[i]) / (track.t[i + 1] - track.t[i]);
+  return (1.0 - f) * track.rows[i] + f * track.rows[i + 1];
+}
+
+// Counts b's points with a reference track at their time (result->points), those within
+// inlier_px of its epipolar line (agreements) and their RMS distance; `time` gives a point's
+// time in the reference's clock.
+template <typename TimeOf>
+void CountAgreements(const std::vector<IdealTrack>& ref, const std::vector<LinePoint>& points,
+                     const TimeOf& time, double gap, double inlier_px, OffsetResult* result) {
+  result->points = result->agreements = 0;
+  double squares = 0.0;
+  for (const LinePoint& p : points) {
+    const auto r = Residual(ref, p, time(p), gap);
+    if (!r) continue;
+    ++result->points;
+    if (std::abs(*r) <= inlier_px) {
+      ++result->agreements;
+      squares += *r * *r;
+    }
+  }
+  result->rms_px = result->agreements > 0 ? std::sqrt(squares / result->agreements) : 0.0;
 }
 
 // The fine fit from a coarse offset: a scan of +-2 bins, then iteratively reweighted
@@ -160,17 +193,9 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
   result.offset_s = offset;
   result.rate = rate;
   result.rate_fitted = fit_rate;
-  double squares = 0.0;
-  for (const LinePoint& p : points) {
-    const auto r = Residual(ref, p, offset + rate * p.s, gap);
-    if (!r) continue;
-    ++result.points;
-    if (std::abs(*r) <= options.inlier_px) {
-      ++result.agreements;
-      squares += *r * *r;
-    }
-  }
-  result.rms_px = result.agreements > 0 ? std::sqrt(squares / result.agreements) : 0.0;
+  CountAgreements(
+      ref, points, [&](const LinePoint& p) { return offset + rate * p.s; }, gap, options.inlier_px,
+      &result);
   const int parameters = fit_rate ? 2 : 1;
   if (used > parameters && normal(0, 0) > 0.0) {
     const double variance = weighted_squares / (used - parameters);
@@ -180,14 +205,123 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
   return result;
 }
 
+// The line times of both cameras with the offset (and the rate when `start` fitted one), by
+// iteratively reweighted Gauss-Newton from `start`: b's point at row v is at world time
+// offset + rate * (s + L_b v); the reference's points move by L_r times their rows, which moves
+// its track at time t by -L_r * row(t) along itself. Recounts the agreement and sigma.
+// The line times' priors (s a row): b's and the reference's, each with its sigma.
+struct LineTimePrior {
+  double b = 0.0, b_sigma = 1.0, r = 0.0, r_sigma = 1.0;
+};
+
+// The median time between a camera's consecutive track points (its frame period; 0 if none).
+double FramePeriod(const std::vector<Track2d>& tracks) {
+  std::vector<double> steps;
+  for (const Track2d& track : tracks) {
+    for (std::size_t i = 1; i < track.points.size(); ++i) {
+      steps.push_back(track.points[i].t - track.points[i - 1].t);
+    }
+  }
+  if (steps.empty()) return 0.0;
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  return *middle;
+}
+
+OffsetResult FitLineTimes(const std::vector<IdealTrack>& ref, const std::vector<LinePoint>& points,
+                          const OffsetResult& start, const LineTimePrior& prior,
+                          const OffsetOptions& options) {
+  const double gap = options.max_interpolation_gap_s;
+  const double h = 1e-4;
+  double offset = start.offset_s, rate = start.rate, lb = 0.0, lr = 0.0;
+  const bool fit_rate = start.rate_fitted;
+  using Vector4 = Eigen::Matrix<double, 4, 1>;
+  using Matrix4 = Eigen::Matrix<double, 4, 4>;
+  const auto shifted = [&](double line_time) {
+    std::vector<IdealTrack> out = ref;
+    for (IdealTrack& track : out) {
+      for (std::size_t j = 0; j < track.t.size(); ++j) track.t[j] += line_time * track.rows[j];
+      if (!std::is_sorted(track.t.begin(), track.t.end())) track = {};  // rows too far apart
+    }
+    return out;
+  };
+  Matrix4 normal = Matrix4::Identity();
+  double weighted_squares = 0.0;
+  int used = 0;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const std::vector<IdealTrack> moved = shifted(lr);
+    Matrix4 a = Matrix4::Zero();
+    Vector4 g = Vector4::Zero();
+    weighted_squares = 0.0;
+    used = 0;
+    for (const LinePoint& p : points) {
+      const double t = offset + rate * (p.s + lb * p.row);
+      int track = -1;
+      const auto r = Residual(moved, p, t, gap, -1, &track);
+      if (!r || std::abs(*r) > 2.0 * options.inlier_px) continue;
+      const auto r_plus = Residual(moved, p, t + h, gap, track);
+      const auto r_minus = Residual(moved, p, t - h, gap, track);
+      if (!r_plus || !r_minus) continue;
+      const double d = (*r_plus - *r_minus) / (2.0 * h);
+      const Vector4 j(d, fit_rate ? d * p.s : 0.0, d * rate * p.row, -d * RowAt(moved[track], t));
+      const double w = std::abs(*r) <= options.huber_px ? 1.0 : options.huber_px / std::abs(*r);
+      a += w * j * j.transpose();
+      g += w * j * *r;
+      weighted_squares += w * *r * *r;
+      ++used;
+    }
+    if (used < 8) break;
+    // The priors (options.readout_prior); the rate, when not fitted, stays.
+    Matrix4 damped = a;
+    damped(2, 2) += 1.0 / (prior.b_sigma * prior.b_sigma);
+    damped(3, 3) += 1.0 / (prior.r_sigma * prior.r_sigma);
+    g(2) += (lb - prior.b) / (prior.b_sigma * prior.b_sigma);
+    g(3) += (lr - prior.r) / (prior.r_sigma * prior.r_sigma);
+    if (!fit_rate) {  // the rate stays
+      damped.row(1).setZero();
+      damped.col(1).setZero();
+      damped(1, 1) = 1.0;
+      g(1) = 0.0;
+    }
+    normal = damped;
+    Vector4 step = -damped.ldlt().solve(g);
+    // Stay in the linear range: at most a bin a step (the line times in proportion).
+    const double scale = std::min(1.0, options.bin_s / std::max(1e-12, std::abs(step(0))));
+    step *= scale;
+    offset += step(0), rate += step(1), lb += step(2), lr += step(3);
+    if (std::abs(step(0)) < 1e-7 && std::abs(step(2)) < 1e-10 && std::abs(step(3)) < 1e-10) break;
+  }
+  OffsetResult result = start;
+  if (used < 8) return result;  // too few points near the start: keep it
+  result.offset_s = offset;
+  result.rate = rate;
+  result.line_times_fitted = true;
+  result.line_time_s = lb;
+  result.reference_line_time_s = lr;
+  const std::vector<IdealTrack> moved = shifted(lr);
+  CountAgreements(
+      moved, points, [&](const LinePoint& p) { return offset + rate * (p.s + lb * p.row); }, gap,
+      options.inlier_px, &result);
+  const int parameters = fit_rate ? 4 : 3;
+  if (used > parameters) {
+    const double variance = weighted_squares / (used - parameters);
+    const Matrix4 covariance = normal.inverse();
+    result.sigma_s = std::sqrt(std::max(0.0, variance * covariance(0, 0)));
+  }
+  return result;
+}
+
 }  // namespace
 
 bool OffsetOptions::IsValid(std::string* error) const {
   if (!(max_offset_s > 0.0) || !(bin_s > 0.0) || bin_s > max_offset_s || !(inlier_px > 0.0) ||
-      !(huber_px > 0.0) || min_agreements < 3 || !(max_second_peak > 0.0) ||
-      !(max_interpolation_gap_s > 0.0) || !(min_crossing_px >= 0.0) ||
-      !(min_span_for_rate_s > 0.0) || !(in_step_sigmas >= 0.0)) {
-    if (error) *error = "offset search: bounds must be positive, min_agreements >= 3";
+      !(huber_px > 0.0) || min_agreements < 3 || !(min_agreeing_s >= 0.0) ||
+      !(max_second_peak > 0.0) || !(max_interpolation_gap_s > 0.0) || !(min_crossing_px >= 0.0) ||
+      !(min_span_for_rate_s > 0.0) || !(in_step_sigmas >= 0.0) || !(readout_prior >= 0.0) ||
+      readout_prior > 1.0 || !(readout_prior_sigma > 0.0)) {
+    if (error)
+      *error =
+          "offset search: bounds must be positive, min_agreements >= 3, readout_prior in [0, 1]";
     return false;
   }
   return true;
@@ -201,7 +335,7 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   std::vector<LinePoint> points;
   for (const Track2d& track : b_tracks) {
     for (const TrackPoint& p : track.points) {
-      points.push_back({p.t, EpipolarLine(b, p.pixel, reference)});
+      points.push_back({p.t, EpipolarLine(b, p.pixel, reference), p.pixel.y()});
     }
   }
   if (ref.empty() || points.empty()) {
@@ -252,6 +386,7 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   // 2. Fine, from each peak: the one where most of b's points agree wins (a rally's back and
   // forth makes chance crossings repeat; the votes alone can favour a wrong period).
   std::vector<OffsetResult> fits;
+  fits.reserve(peaks.size());
   for (int peak : peaks) {
     fits.push_back(FitAround(ref, points, (peak - centre) * options.bin_s, options));
   }
@@ -269,11 +404,15 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
     }
   }
   const double offset = result.offset_s;
-  if (result.agreements < options.min_agreements) {
+  const double period_b = FramePeriod(b_tracks);
+  const int needed =
+      std::max(options.min_agreements,
+               period_b > 0.0 ? static_cast<int>(std::ceil(options.min_agreeing_s / period_b)) : 0);
+  if (result.agreements < needed) {
     result.why = fmt::format(
         "too little ball motion seen by both {} and {}: {} point(s) agree at the best offset "
         "({:+.4f} s), {} are needed; record a few seconds of play that both cameras see",
-        reference.name, b.name, result.agreements, offset, options.min_agreements);
+        reference.name, b.name, result.agreements, offset, needed);
     return result;
   }
   if (result.peak_ratio > options.max_second_peak) {
@@ -283,8 +422,23 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
         b.name, reference.name, 100.0 * result.peak_ratio);
     return result;
   }
+  if (options.fit_line_times) {
+    // A whole frame's readout over the rows (s a row).
+    const auto full = [&](const Camera& camera, const std::vector<Track2d>& tracks) {
+      return FramePeriod(tracks) / std::max(1, camera.height);
+    };
+    const double period_b = full(b, b_tracks), period_r = full(reference, reference_tracks);
+    // The fit adds to the line times the tracks' times hold already (the rig's).
+    LineTimePrior prior;
+    prior.b = options.readout_prior * period_b - b.clock.line_time_s;
+    prior.r = options.readout_prior * period_r - reference.clock.line_time_s;
+    prior.b_sigma = std::max(1e-9, options.readout_prior_sigma * period_b);
+    prior.r_sigma = std::max(1e-9, options.readout_prior_sigma * period_r);
+    result = FitLineTimes(ref, points, result, prior, options);
+  }
   result.found = true;
-  if (!result.rate_fitted && std::abs(offset) <= options.in_step_sigmas * result.sigma_s) {
+  if (!result.rate_fitted && !result.line_times_fitted &&
+      std::abs(offset) <= options.in_step_sigmas * result.sigma_s) {
     result.in_step = true;
     result.offset_s = 0.0;
   }

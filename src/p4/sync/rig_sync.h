@@ -12,10 +12,19 @@
 namespace p4::sync {
 
 struct RigSyncOptions {
+  // Gaps are at least min_gap_frames of the camera's own frame period (its median stamp step):
+  // a 25 fps webcam that misses one frame leaves 80 ms, more than a 60 fps camera's 50 ms.
   Track2dOptions tracks;
   OffsetOptions offsets;
+  double min_gap_frames = 2.5;
 
-  bool IsValid(std::string* error) const { return tracks.IsValid(error) && offsets.IsValid(error); }
+  bool IsValid(std::string* error) const {
+    if (!(min_gap_frames >= 1.0)) {
+      if (error) *error = "sync: min_gap_frames must be at least 1";
+      return false;
+    }
+    return tracks.IsValid(error) && offsets.IsValid(error);
+  }
 };
 
 struct RigSyncResult {
@@ -27,7 +36,9 @@ struct RigSyncResult {
 
 // `frames[c]`: camera c's frames (stamps in its own clock, top row). Rows' delays are added from
 // each camera's line_time_s; the first camera's offset and rate are kept as the rig has them.
-// Cameras whose offset cannot be found keep their clock, and their result says why.
+// Cameras whose offset cannot be found keep their clock, and their result says why. With
+// options.offsets.fit_line_times every camera's line time is found too (added to the rig's; the
+// reference's is the mean of what each camera's pair found).
 RigSyncResult SynchroniseRig(const Rig& rig,
                              const std::vector<std::vector<FrameCandidates>>& frames,
                              const RigSyncOptions& options = {});

@@ -63,6 +63,7 @@ struct Recording {
   double dark_from_s = -1.0, dark_to_s = -1.0;  // stamps without frames (a camera that drops out)
   int false_candidates = 1;                     // per frame, anywhere
   bool lamp = true;                             // a static candidate every frame
+  double line_time_s = 0.0;                     // rolling shutter: each row this much later
 };
 
 // The camera's frames (stamps in its own clock) with the ball's pixel among the candidates.
@@ -77,11 +78,18 @@ inline std::vector<FrameCandidates> Record(const Camera& camera, const Rally& ra
     const double stamp = k / r.fps;
     if (u(rng) < r.drop_rate || (stamp >= r.dark_from_s && stamp < r.dark_to_s)) continue;
     FrameCandidates frame{stamp, {}};
-    if (const auto p = rally.At(r.offset_s + rate * stamp)) {
-      if (const auto px = camera.Project(*p); px && camera.InImage(*px)) {
-        frame.pixels.push_back(*px + Eigen::Vector2d(noise(rng), noise(rng)));
+    // The ball where it was when its row was read (the row found by a few rounds).
+    std::optional<Eigen::Vector2d> seen;
+    double row = 0.0;
+    for (int round = 0; round < (r.line_time_s > 0.0 ? 4 : 1); ++round) {
+      seen.reset();
+      if (const auto p = rally.At(r.offset_s + rate * (stamp + r.line_time_s * row))) {
+        if (const auto px = camera.Project(*p); px && camera.InImage(*px)) seen = *px;
       }
+      if (!seen) break;
+      row = seen->y();
     }
+    if (seen) frame.pixels.push_back(*seen + Eigen::Vector2d(noise(rng), noise(rng)));
     if (r.lamp) frame.pixels.push_back({100.0 + noise(rng), 80.0 + noise(rng)});
     for (int i = 0; i < r.false_candidates; ++i) {
       frame.pixels.push_back({u(rng) * camera.width, u(rng) * camera.height});
