@@ -159,7 +159,7 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
   }
   std::string rig = (sim / "rig.yaml").string();
   if (true_clocks && fs::exists(sim / "rig_synced.yaml")) rig = (sim / "rig_synced.yaml").string();
-  const bool rolling = scene.rolling_shutter_ms > 0.0;
+  const bool rolling = !scene.rolling_shutter_ms.empty();
   if (rolling && a.readout == "known") {
     Rig readout = ReadRig(rig);
     const Rig truth = ReadRig((sim / "rig_synced.yaml").string());

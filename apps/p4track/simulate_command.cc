@@ -54,8 +54,8 @@ struct SimulateArgs {
   int threads = 0;
   // Cameras out of step (beyond the paper): each camera's start, rate and clock drift; camera 0
   // is the rig's clock.
-  std::string start_offsets, camera_fps, drift_ppm;
-  double rolling_shutter_ms = 0.0, drop_rate = 0.0, stamp_jitter_ms = 0.0;
+  std::string start_offsets, camera_fps, drift_ppm, rolling_shutter_ms;
+  double drop_rate = 0.0, stamp_jitter_ms = 0.0;
 };
 
 // One number per camera from "a,b,c" (empty: `fallback` for all).
@@ -152,7 +152,12 @@ int Run(const SimulateArgs& a) {
     throw Error("--start-offsets, --drift-ppm: camera 0 is the rig's clock (0 for it)");
   }
   std::vector<CameraTiming> timing(a.cameras);
-  bool in_step = a.rolling_shutter_ms == 0.0 && a.drop_rate == 0.0 && a.stamp_jitter_ms == 0.0;
+  // One readout for every camera, or one each (phones of two models).
+  const bool one_readout = a.rolling_shutter_ms.find(',') == std::string::npos;
+  const std::vector<double> readouts =
+      PerCamera(a.rolling_shutter_ms, one_readout ? 1 : a.cameras, 0.0, "--rolling-shutter-ms");
+  const auto readout_ms = [&](int c) { return readouts.size() == 1 ? readouts[0] : readouts[c]; };
+  bool in_step = a.drop_rate == 0.0 && a.stamp_jitter_ms == 0.0;
   for (int c = 0; c < a.cameras; ++c) {
     if (std::abs(starts[c]) > 60.0) throw Error("--start-offsets: within +-60 s");
     if (rates[c] < 1 || rates[c] > 1000 || rates[c] != std::floor(rates[c])) {
@@ -160,8 +165,18 @@ int Run(const SimulateArgs& a) {
           fmt::format("--camera-fps: whole frames a second in [1, 1000], got {}", rates[c]));
     }
     if (std::abs(drifts[c]) > 1000.0) throw Error("--drift-ppm: within +-1000 ppm");
+    if (readout_ms(c) < 0.0 || readout_ms(c) > 100.0) {
+      throw Error(fmt::format("--rolling-shutter-ms: within [0, 100] ms, got {}", readout_ms(c)));
+    }
     timing[c] = {starts[c], static_cast<int>(rates[c]), 1.0 + 1e-6 * drifts[c],
-                 a.rolling_shutter_ms / 1000.0 / height};
+                 readout_ms(c) / 1000.0 / height};
+    in_step = in_step && readout_ms(c) == 0.0;
+    if (readout_ms(c) > 1000.0 / timing[c].fps) {
+      throw Error(fmt::format(
+          "--rolling-shutter-ms: camera {}'s readout ({} ms) is longer than its frame ({:.2f} "
+          "ms); a sensor reads a frame out within its period",
+          c, readout_ms(c), 1000.0 / timing[c].fps));
+    }
     if (exposure > 1.0 / timing[c].fps) {
       throw Error(fmt::format("--exposure-ms: longer than camera {}'s frame ({:.2f} ms)", c,
                               1000.0 / timing[c].fps));
@@ -392,8 +407,7 @@ std::function<int()> AddSimulateCommand(CLI::App& app) {
                   "Each camera's clock drift against camera 0's, parts per million (e.g. 0,40)");
   cmd->add_option("--rolling-shutter-ms", args->rolling_shutter_ms,
                   "Rolling shutter: time to read a whole frame out, top row to bottom (phones: "
-                  "15-30 ms)")
-      ->check(CLI::Range(0.0, 100.0));
+                  "15-30 ms); one for all cameras or one each (e.g. 12,18)");
   cmd->add_option("--drop-rate", args->drop_rate, "Share of frames each camera loses")
       ->check(CLI::Range(0.0, 0.5));
   cmd->add_option("--stamp-jitter-ms", args->stamp_jitter_ms,

@@ -197,6 +197,10 @@ TEST_F(SimulateCommand, BadOptionsFailWithAMessage) {
   EXPECT_NE(P4track("simulate --out /tmp/p4_bad --size 640by480"), 0);
   EXPECT_NE(P4track("simulate --out /tmp/p4_bad --best-of 4"), 0);
   EXPECT_NE(P4track("simulate"), 0);  // --out is required
+  // A readout per camera, each within its frame.
+  EXPECT_NE(P4track("simulate --out /tmp/p4_bad --cameras 2 --rolling-shutter-ms 12,18,3"), 0);
+  EXPECT_NE(P4track("simulate --out /tmp/p4_bad --fps 60 --rolling-shutter-ms 18"), 0);
+  EXPECT_NE(P4track("simulate --out /tmp/p4_bad --rolling-shutter-ms 12,x"), 0);
 }
 
 }  // namespace

@@ -129,8 +129,11 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
     s.distortion = true;
     s.ball = d.P(0.75) ? "orange" : "yellow";
     out_of_step(1.0);
-    // The sensor is read out within the frame: 15-25 ms at 30 fps, 10-16 ms at 60 fps.
-    s.rolling_shutter_ms = Round(s.fps == 30 ? d.U(15.0, 25.0) : d.U(10.0, 16.0), 0.1);
+    // Each sensor is read out within the frame: 15-25 ms at 30 fps, 10-16 ms at 60 fps (two
+    // phone models: two readouts).
+    for (int c = 0; c < s.cameras; ++c) {
+      s.rolling_shutter_ms.push_back(Round(s.fps == 30 ? d.U(15.0, 25.0) : d.U(10.0, 16.0), 0.1));
+    }
     s.twin = "global-shutter";
   } else {
     throw Error("family '" + family + "': use one of " +
@@ -171,8 +174,8 @@ std::vector<std::string> SuiteScene::SimulateArgs() const {
   list("--start-offsets", start_offsets_s, "{:.5f}");
   list("--camera-fps", camera_fps, "{}");
   list("--drift-ppm", drift_ppm, "{:.1f}");
-  const std::pair<const char*, double> timing[] = {{"--rolling-shutter-ms", rolling_shutter_ms},
-                                                   {"--drop-rate", drop_rate},
+  list("--rolling-shutter-ms", rolling_shutter_ms, "{:.3f}");
+  const std::pair<const char*, double> timing[] = {{"--drop-rate", drop_rate},
                                                    {"--stamp-jitter-ms", stamp_jitter_ms}};
   for (const auto& [flag, value] : timing) {
     if (value > 0.0) a.insert(a.end(), {flag, fmt::format("{:.3f}", value)});
@@ -186,7 +189,7 @@ SuiteScene SuiteScene::Twin() const {
   }
   SuiteScene t = *this;
   t.twin.clear();
-  t.rolling_shutter_ms = 0.0;
+  t.rolling_shutter_ms.clear();
   if (twin == "in-step") {
     t.start_offsets_s.clear();
     t.drift_ppm.clear();

@@ -20,9 +20,9 @@
 //                  stamps jittered by up to 0.5 ms, up to 2 % of frames dropped; 10 s of play;
 //                  twin: the same rig triggered in step.
 //   unsync-webcam  the webcam family's rigs at random offsets and phases; twin: in step.
-//   phone          2 phones 1920x1080 at 30 or 60 fps with a rolling shutter (readout 15-25 ms
-//                  at 30 fps, 10-16 ms at 60), random offsets and phases; twin: the same phones
-//                  with a global shutter.
+//   phone          2 phones 1920x1080 at 30 or 60 fps with rolling shutters (each its own
+//                  readout, 15-25 ms at 30 fps, 10-16 ms at 60), random offsets and phases; twin:
+//                  the same phones with a global shutter.
 // Pure: no files, clocks or processes.
 #pragma once
 
@@ -58,7 +58,8 @@ struct SuiteScene {
   std::vector<double> start_offsets_s;
   std::vector<int> camera_fps;
   std::vector<double> drift_ppm;
-  double rolling_shutter_ms = 0.0, drop_rate = 0.0, stamp_jitter_ms = 0.0;
+  std::vector<double> rolling_shutter_ms;  // each camera's readout; empty: global shutters
+  double drop_rate = 0.0, stamp_jitter_ms = 0.0;
   // The twin measured beside the scene: "in-step" (the same play by cameras triggered together,
   // each at its own rate, the clocks known) or "global-shutter" (the same cameras without rolling
   // shutter); empty: none.
