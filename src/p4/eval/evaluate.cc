@@ -24,6 +24,36 @@ nlohmann::ordered_json EvalReport::ToJson() const {
   return j;
 }
 
+namespace {
+
+// The truth row to carry to time `t` from: `nearest`, or its neighbour on t's side of a contact
+// between them. A contact shows as a velocity jump beyond gravity's; it happened where the two
+// rows' flights come closest (the ball leaves the contact where it arrived).
+const TruthRow* SameSide(const std::vector<TruthRow>& truth, const TruthRow* nearest, double t,
+                         const EvalOptions& options) {
+  if (t == nearest->t) return nearest;
+  const std::ptrdiff_t i = nearest - truth.data();
+  const std::ptrdiff_t j = t >= nearest->t ? i + 1 : i - 1;
+  if (j < 0 || j >= static_cast<std::ptrdiff_t>(truth.size()) || !truth[j].in_play) {
+    return nearest;
+  }
+  const TruthRow& a = truth[std::min(i, j)];
+  const TruthRow& b = truth[std::max(i, j)];
+  const double dt = b.t - a.t;
+  const Eigen::Vector3d g(0.0, 0.0, -options.gravity);
+  if (!(dt > 0.0) || (b.velocity - a.velocity - g * dt).norm() <= options.contact_mps) {
+    return nearest;
+  }
+  // a carried forward and b carried back by straight lines meet at the contact's time s:
+  // a.p + a.v (s - a.t) = b.p + b.v (s - b.t), in the least-squares sense.
+  const Eigen::Vector3d dv = a.velocity - b.velocity;
+  const Eigen::Vector3d rhs = b.position - a.position + a.velocity * a.t - b.velocity * b.t;
+  const double s = dv.squaredNorm() > 0.0 ? dv.dot(rhs) / dv.squaredNorm() : 0.5 * (a.t + b.t);
+  return t < s ? &a : &b;
+}
+
+}  // namespace
+
 EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<TrajectoryRow>& run,
                     const Rig& rig, const std::vector<std::vector<float>>& visibility,
                     const EvalOptions& options) {
@@ -54,10 +84,11 @@ EvalReport Evaluate(const std::vector<TruthRow>& truth, const std::vector<Trajec
     const bool ball = t && t->in_play;
     // The truth at the row's own time (cameras out of step put rows between the truth's): the
     // nearest truth row carried ballistically over the gap (< half a period; drag and spin move
-    // the ball < 0.5 mm in 8 ms).
-    const double gap = t ? row.t - t->t : 0.0;
+    // the ball < 0.5 mm in 8 ms), or the one on the row's side of a contact between them.
+    const TruthRow* from = ball ? SameSide(truth, t, row.t, options) : nullptr;
+    const double gap = from ? row.t - from->t : 0.0;
     const Eigen::Vector3d truth_at =
-        ball ? Eigen::Vector3d(t->position + gap * t->velocity +
+        from ? Eigen::Vector3d(from->position + gap * from->velocity +
                                Eigen::Vector3d(0.0, 0.0, -0.5 * options.gravity * gap * gap))
              : Eigen::Vector3d::Zero();
     const double error_mm = ball ? 1000.0 * (row.position - truth_at).norm() : 1e9;

@@ -1,5 +1,6 @@
 // Accuracy of a tracking run against the simulator's ground truth (`p4track eval`).
-// Rows are matched by time (the nearest truth row within half a frame). Pure.
+// Rows are matched by time (the nearest truth row within half a frame) and compared with the
+// truth carried ballistically to the row's own time. Pure.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -15,7 +16,12 @@ struct EvalOptions {
   double false_positive_mm = 50.0;  // a measured row farther than this from the truth is false
   int min_views = 2;                // recall counts frames seen by this many cameras (or all)
   double gravity = 9.81;            // m/s^2: the truth carried to a row's time between its rows
-  double min_visible = 0.5;         // with visibility truth: a camera sees the ball from this share
+  // Truth rows whose velocities differ by more than this beyond gravity's (m/s) have a contact
+  // (bounce, hit) between them: a row between them is carried from the truth row on its own side
+  // of the contact (where the two rows' flights meet), not from the nearer one across it. Drag
+  // and spin change the velocity by < 0.3 m/s in a frame of 60 fps.
+  double contact_mps = 1.0;
+  double min_visible = 0.5;  // with visibility truth: a camera sees the ball from this share
 };
 
 struct EvalReport {

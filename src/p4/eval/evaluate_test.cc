@@ -84,6 +84,40 @@ TEST(Evaluate, ARowBetweenTheTruthsRowsMeetsTheTruthAtItsOwnTime) {
   EXPECT_EQ(r.false_positive_rate, 0.0);
 }
 
+TEST(Evaluate, ARowJustAfterAHitMeetsTheTruthOnItsSideOfTheHit) {
+  // The truth at 60 Hz; the ball flies at -5 m/s in x until a hit at t = 0.036 s at x = 0, then
+  // at +10 m/s. A row at 0.038 s (out of step) is nearest the truth row at 0.0333 s, before the
+  // hit, but is compared with the flight after it (+20 mm), not the one before carried across
+  // the hit (-10 mm).
+  const double hit = 0.036;
+  const auto at = [&](double t) -> Eigen::Vector3d {
+    return {t < hit ? -5.0 * (t - hit) : 10.0 * (t - hit), 0.0, 0.5};
+  };
+  const auto velocity = [&](double t) -> Eigen::Vector3d {
+    return {t < hit ? -5.0 : 10.0, 0.0, 0.0};
+  };
+  std::vector<TruthRow> truth;
+  for (int i = 0; i < 6; ++i) {
+    const double t = i / 60.0;
+    truth.push_back({t, at(t), true, velocity(t)});
+  }
+  const auto row_at = [&](double t) {
+    std::vector<TrajectoryRow> run(1);
+    run[0].t = t;
+    run[0].position = at(t);
+    run[0].measured = true;
+    return run;
+  };
+  EvalOptions options;
+  options.gravity = 0.0;                          // the flight above is straight
+  for (const double t : {0.035, 0.038, 0.045}) {  // before the hit, across it, after it
+    EXPECT_LT(Evaluate(truth, row_at(t), {}, {}, options).position_rmse_mm, 0.01) << t;
+  }
+  // With contacts taken for drag (a bound above the jump), the nearest row is carried across.
+  options.contact_mps = 100.0;
+  EXPECT_NEAR(Evaluate(truth, row_at(0.038), {}, {}, options).position_rmse_mm, 30.0, 0.1);
+}
+
 TEST(Evaluate, EmptyInputsGiveZeros) {
   const EvalReport r = Evaluate({}, {}, TwoCameras(), {});
   EXPECT_EQ(r.frames, 0);

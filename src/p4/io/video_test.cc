@@ -119,9 +119,9 @@ TEST(Video, ReadsANetworkStreamOverTcp) {
   const int port = 20000 + ::getpid() % 20000;
   const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
   const std::string serve = "ffmpeg -v error -re -i " + path + " -c copy -f mpegts '" + url +
-                            "?listen=1&listen_timeout=10000' > /dev/null 2>&1 &";
+                            "?listen=1&listen_timeout=60000' > /dev/null 2>&1 &";
   ASSERT_EQ(std::system(serve.c_str()), 0);
-  const std::unique_ptr<VideoReader> reader = Connect(url, 5.0);
+  const std::unique_ptr<VideoReader> reader = Connect(url, 60.0);
   ASSERT_TRUE(reader) << "could not connect to " << url;
   EXPECT_TRUE(VideoReader::IsLive(url));
   EXPECT_EQ(reader->info().width, 160);
@@ -145,7 +145,9 @@ namespace p4 {
 namespace {
 
 // A real RTSP server (rtsp-server-perl, a relay like a camera's): ffmpeg publishes an H.264 clip
-// to it and the reader plays it as a client, the way it opens a network camera.
+// to it, again and again, and the reader plays it as a client, the way it opens a network camera.
+// Every wait is on a condition (the server answering, 60 frames read), bounded only so that a
+// broken setup fails instead of hanging.
 TEST(Video, ReadsAnRtspStream) {
   if (std::system("command -v rtsp-server-perl > /dev/null 2>&1") != 0) {
     GTEST_SKIP() << "rtsp-server-perl is not installed (scripts/setup.sh installs it)";
@@ -153,34 +155,42 @@ TEST(Video, ReadsAnRtspStream) {
   const std::string path = (fs::temp_directory_path() / "p4_rtsp_source.mp4").string();
   WriteClip(path, 320, 240, 30, 120);
   const int port = 30000 + (::getpid() % 10000) * 2;
-  const std::string pid_file = (fs::temp_directory_path() / "p4_rtsp_server.pid").string();
+  const std::string tmp = fs::temp_directory_path().string();
+  const std::string server_pid = tmp + "/p4_rtsp_server.pid",
+                    publisher_pid = tmp + "/p4_rtsp_pub.pid";
   ASSERT_EQ(
       std::system(("rtsp-server-perl -c " + std::to_string(port) + " -s " +
-                   std::to_string(port + 1) + " -l 0 > /dev/null 2>&1 & echo $! > " + pid_file)
+                   std::to_string(port + 1) + " -l 0 > /dev/null 2>&1 & echo $! > " + server_pid)
                       .c_str()),
       0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(800));
-  const std::string publish = "ffmpeg -v error -re -i " + path +
-                              " -c copy -f rtsp rtsp://127.0.0.1:" + std::to_string(port + 1) +
-                              "/p4 > /dev/null 2>&1 &";
+  // The publisher retries until the server takes it and loops the clip until it is stopped.
+  const std::string publish_url = "rtsp://127.0.0.1:" + std::to_string(port + 1) + "/p4";
+  const std::string publish = "sh -c 'while true; do ffmpeg -v error -re -stream_loop -1 -i " +
+                              path + " -c copy -f rtsp " + publish_url +
+                              "; sleep 0.2; done' > /dev/null 2>&1 & echo $! > " + publisher_pid;
   ASSERT_EQ(std::system(publish.c_str()), 0);
   const std::string url = "rtsp://127.0.0.1:" + std::to_string(port) + "/p4";
-  const std::unique_ptr<VideoReader> reader = Connect(url, 3.0);
+  const std::unique_ptr<VideoReader> reader = Connect(url, 60.0);
   int frames = 0;
   if (reader) {
     EXPECT_EQ(reader->info().width, 320);
     ImageView view;
     TimeNs pts = 0;
     try {
-      while (reader->ReadView(&view, &pts)) ++frames;
-    } catch (const Error&) {
-      // The publisher stopped: a live stream ends with a timeout.
+      while (frames < 60 && reader->ReadView(&view, &pts)) ++frames;
+    } catch (const Error& e) {
+      ADD_FAILURE() << "the stream broke after " << frames << " frames: " << e.what();
     }
   }
-  std::system(("kill $(cat " + pid_file + ") > /dev/null 2>&1").c_str());
+  // The loop first (no new publisher), then the server and the publisher by their command lines
+  // ("[r]": a pattern that does not match the shell running pkill itself).
+  std::system(("kill $(cat " + publisher_pid + ") $(cat " + server_pid +
+               ") > /dev/null 2>&1; pkill -f '[r]tsp-server-perl -c " + std::to_string(port) +
+               " '; pkill -f '[-]f rtsp " + publish_url + "'")
+                  .c_str());
   fs::remove(path);
   ASSERT_TRUE(reader) << "could not play " << url;
-  EXPECT_GE(frames, 60);  // of 120: the client joins a moment after the publisher starts
+  EXPECT_EQ(frames, 60);
 }
 
 }  // namespace
