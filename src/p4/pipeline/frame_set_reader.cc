@@ -25,6 +25,9 @@ FrameSetReader::FrameSetReader(const std::vector<std::string>& sources, bool loo
     if (!clocks.empty()) source.clock = clocks[i];
     sources_.push_back(std::move(source));
   }
+  double fastest = 0.0;
+  for (const Source& s : sources_) fastest = std::max(fastest, s.reader->info().fps);
+  tolerance_ = FromSeconds(0.5 / (fastest > 0 ? fastest : 30.0));
 }
 
 bool FrameSetReader::ReadAll() {
@@ -79,13 +82,10 @@ bool FrameSetReader::Next(FrameSet* set) {
   set->t = *t;
   set->images.assign(sources_.size(), std::nullopt);
   set->times.assign(sources_.size(), *t);
-  double fastest = 0.0;
-  for (const Source& s : sources_) fastest = std::max(fastest, s.reader->info().fps);
-  const TimeNs tolerance = FromSeconds(0.5 / (fastest > 0 ? fastest : 30.0));
   for (std::size_t i = 0; i < sources_.size(); ++i) {
     Source& s = sources_[i];
     if (!s.has_frame || s.consumed) continue;
-    if (std::llabs(s.pts - *t) <= tolerance) {
+    if (std::llabs(s.pts - *t) <= tolerance_) {
       set->images[i] = s.view;
       set->times[i] = s.pts;
       s.consumed = true;

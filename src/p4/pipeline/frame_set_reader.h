@@ -63,6 +63,7 @@ class FrameSetReader {
   bool loop_ = false;
   int loops_ = 0;
   TimeNs first_pts_ = 0, last_pts_ = 0, shift_ = 0;
+  TimeNs tolerance_ = 0;  // half the fastest source's frame period: a set's reach
   bool any_frame_ = false;
 };
 

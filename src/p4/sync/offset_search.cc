@@ -105,6 +105,30 @@ double RowAt(const IdealTrack& track, double t) {
   return (1.0 - f) * track.rows[i] + f * track.rows[i + 1];
 }
 
+// One of b's points linearised for the robust fits: its epipolar distance r to the reference
+// track at time t (a point farther than twice inlier_px is left out), the slope of r along time
+// on the same track (another one's distance is no derivative), its Huber weight.
+struct Linearised {
+  double r = 0.0, slope = 0.0, weight = 1.0;
+  int track = -1;
+};
+
+std::optional<Linearised> Linearise(const std::vector<IdealTrack>& ref, const LinePoint& p,
+                                    double t, const OffsetOptions& options) {
+  const double gap = options.max_interpolation_gap_s;
+  const double h = 1e-4;  // s, for the derivative along time
+  Linearised l;
+  const auto r = Residual(ref, p, t, gap, -1, &l.track);
+  if (!r || std::abs(*r) > 2.0 * options.inlier_px) return std::nullopt;
+  const auto r_plus = Residual(ref, p, t + h, gap, l.track);
+  const auto r_minus = Residual(ref, p, t - h, gap, l.track);
+  if (!r_plus || !r_minus) return std::nullopt;
+  l.r = *r;
+  l.slope = (*r_plus - *r_minus) / (2.0 * h);
+  l.weight = std::abs(*r) <= options.huber_px ? 1.0 : options.huber_px / std::abs(*r);
+  return l;
+}
+
 // Counts b's points with a reference track at their time (result->points), those within
 // inlier_px of its epipolar line (agreements) and their RMS distance; `time` gives a point's
 // time in the reference's clock.
@@ -146,7 +170,6 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
     if (const double c = cost(x); c < best) best = c, offset = x;
   }
   double rate = 1.0;
-  const double h = 1e-4;  // s, for the derivative along time
   Eigen::Matrix2d normal = Eigen::Matrix2d::Identity();
   double weighted_squares = 0.0;
   int used = 0;
@@ -158,20 +181,12 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
     used = 0;
     double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
     for (const LinePoint& p : points) {
-      const double t = offset + rate * p.s;
-      int track = -1;
-      const auto r = Residual(ref, p, t, gap, -1, &track);
-      if (!r || std::abs(*r) > 2.0 * options.inlier_px) continue;
-      // The slope along the same track (another one's distance is no derivative).
-      const auto r_plus = Residual(ref, p, t + h, gap, track);
-      const auto r_minus = Residual(ref, p, t - h, gap, track);
-      if (!r_plus || !r_minus) continue;
-      const double d_offset = (*r_plus - *r_minus) / (2.0 * h);
-      const Eigen::Vector2d j(d_offset, d_offset * p.s);
-      const double w = std::abs(*r) <= options.huber_px ? 1.0 : options.huber_px / std::abs(*r);
-      a += w * j * j.transpose();
-      g += w * j * *r;
-      weighted_squares += w * *r * *r;
+      const auto l = Linearise(ref, p, offset + rate * p.s, options);
+      if (!l) continue;
+      const Eigen::Vector2d j(l->slope, l->slope * p.s);
+      a += l->weight * j * j.transpose();
+      g += l->weight * j * l->r;
+      weighted_squares += l->weight * l->r * l->r;
       ++used;
       s_min = std::min(s_min, p.s), s_max = std::max(s_max, p.s);
     }
@@ -205,34 +220,19 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
   return result;
 }
 
-// The line times of both cameras with the offset (and the rate when `start` fitted one), by
-// iteratively reweighted Gauss-Newton from `start`: b's point at row v is at world time
-// offset + rate * (s + L_b v); the reference's points move by L_r times their rows, which moves
-// its track at time t by -L_r * row(t) along itself. Recounts the agreement and sigma.
 // The line times' priors (s a row): b's and the reference's, each with its sigma.
 struct LineTimePrior {
   double b = 0.0, b_sigma = 1.0, r = 0.0, r_sigma = 1.0;
 };
 
-// The median time between a camera's consecutive track points (its frame period; 0 if none).
-double FramePeriod(const std::vector<Track2d>& tracks) {
-  std::vector<double> steps;
-  for (const Track2d& track : tracks) {
-    for (std::size_t i = 1; i < track.points.size(); ++i) {
-      steps.push_back(track.points[i].t - track.points[i - 1].t);
-    }
-  }
-  if (steps.empty()) return 0.0;
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  return *middle;
-}
-
+// The line times of both cameras with the offset (and the rate when `start` fitted one), by
+// iteratively reweighted Gauss-Newton from `start`: b's point at row v is at world time
+// offset + rate * (s + L_b v); the reference's points move by L_r times their rows, which moves
+// its track at time t by -L_r * row(t) along itself. Recounts the agreement and sigma.
 OffsetResult FitLineTimes(const std::vector<IdealTrack>& ref, const std::vector<LinePoint>& points,
                           const OffsetResult& start, const LineTimePrior& prior,
                           const OffsetOptions& options) {
   const double gap = options.max_interpolation_gap_s;
-  const double h = 1e-4;
   double offset = start.offset_s, rate = start.rate, lb = 0.0, lr = 0.0;
   const bool fit_rate = start.rate_fitted;
   using Vector4 = Eigen::Matrix<double, 4, 1>;
@@ -256,18 +256,14 @@ OffsetResult FitLineTimes(const std::vector<IdealTrack>& ref, const std::vector<
     used = 0;
     for (const LinePoint& p : points) {
       const double t = offset + rate * (p.s + lb * p.row);
-      int track = -1;
-      const auto r = Residual(moved, p, t, gap, -1, &track);
-      if (!r || std::abs(*r) > 2.0 * options.inlier_px) continue;
-      const auto r_plus = Residual(moved, p, t + h, gap, track);
-      const auto r_minus = Residual(moved, p, t - h, gap, track);
-      if (!r_plus || !r_minus) continue;
-      const double d = (*r_plus - *r_minus) / (2.0 * h);
-      const Vector4 j(d, fit_rate ? d * p.s : 0.0, d * rate * p.row, -d * RowAt(moved[track], t));
-      const double w = std::abs(*r) <= options.huber_px ? 1.0 : options.huber_px / std::abs(*r);
-      a += w * j * j.transpose();
-      g += w * j * *r;
-      weighted_squares += w * *r * *r;
+      const auto l = Linearise(moved, p, t, options);
+      if (!l) continue;
+      const double d = l->slope;
+      const Vector4 j(d, fit_rate ? d * p.s : 0.0, d * rate * p.row,
+                      -d * RowAt(moved[l->track], t));
+      a += l->weight * j * j.transpose();
+      g += l->weight * j * l->r;
+      weighted_squares += l->weight * l->r * l->r;
       ++used;
     }
     if (used < 8) break;
@@ -424,16 +420,14 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   }
   if (options.fit_line_times) {
     // A whole frame's readout over the rows (s a row).
-    const auto full = [&](const Camera& camera, const std::vector<Track2d>& tracks) {
-      return FramePeriod(tracks) / std::max(1, camera.height);
-    };
-    const double period_b = full(b, b_tracks), period_r = full(reference, reference_tracks);
+    const double full_b = period_b / std::max(1, b.height);
+    const double full_r = FramePeriod(reference_tracks) / std::max(1, reference.height);
     // The fit adds to the line times the tracks' times hold already (the rig's).
     LineTimePrior prior;
-    prior.b = options.readout_prior * period_b - b.clock.line_time_s;
-    prior.r = options.readout_prior * period_r - reference.clock.line_time_s;
-    prior.b_sigma = std::max(1e-9, options.readout_prior_sigma * period_b);
-    prior.r_sigma = std::max(1e-9, options.readout_prior_sigma * period_r);
+    prior.b = options.readout_prior * full_b - b.clock.line_time_s;
+    prior.r = options.readout_prior * full_r - reference.clock.line_time_s;
+    prior.b_sigma = std::max(1e-9, options.readout_prior_sigma * full_b);
+    prior.r_sigma = std::max(1e-9, options.readout_prior_sigma * full_r);
     result = FitLineTimes(ref, points, result, prior, options);
   }
   result.found = true;

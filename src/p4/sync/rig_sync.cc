@@ -6,20 +6,6 @@
 
 namespace p4::sync {
 
-namespace {
-
-// The median step between a camera's frames' stamps (s; 0 with fewer than two frames).
-double FramePeriod(const std::vector<FrameCandidates>& frames) {
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < frames.size(); ++i) steps.push_back(frames[i].t - frames[i - 1].t);
-  if (steps.empty()) return 0.0;
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  return *middle;
-}
-
-}  // namespace
-
 RigSyncResult SynchroniseRig(const Rig& rig,
                              const std::vector<std::vector<FrameCandidates>>& frames,
                              const RigSyncOptions& options) {

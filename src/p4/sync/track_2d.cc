@@ -75,4 +75,31 @@ std::vector<Track2d> LinkTracks(const std::vector<FrameCandidates>& frames,
   return kept;
 }
 
+namespace {
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace
+
+double FramePeriod(const std::vector<FrameCandidates>& frames) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < frames.size(); ++i) steps.push_back(frames[i].t - frames[i - 1].t);
+  return Median(std::move(steps));
+}
+
+double FramePeriod(const std::vector<Track2d>& tracks) {
+  std::vector<double> steps;
+  for (const Track2d& track : tracks) {
+    for (std::size_t i = 1; i < track.points.size(); ++i) {
+      steps.push_back(track.points[i].t - track.points[i - 1].t);
+    }
+  }
+  return Median(std::move(steps));
+}
+
 }  // namespace p4::sync

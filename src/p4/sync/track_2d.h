@@ -45,4 +45,9 @@ struct Track2dOptions {
 std::vector<Track2d> LinkTracks(const std::vector<FrameCandidates>& frames,
                                 const Track2dOptions& options = {});
 
+// A camera's frame period: the median step between consecutive stamps of its frames, or of the
+// points within its tracks (seconds; 0 with no step).
+double FramePeriod(const std::vector<FrameCandidates>& frames);
+double FramePeriod(const std::vector<Track2d>& tracks);
+
 }  // namespace p4::sync
