@@ -269,15 +269,15 @@ int Run(const SuiteArgs& a) {
         twin_cell = "failed: " + t.failed;
       } else {
         row["twin"] = {{"kind", scene.twin}, {"figures", t.figures}};
-        nlohmann::json twin_row = {{"figures", t.figures}};
-        twin_cell = fmt::format(
-            "{} / {}",
-            Measured(twin_row) ? Figure(t.figures, "position_rmse_mm", 1.0, 2) : std::string("-"),
-            Figure(t.figures, "recall", 100.0, 1));
+        twin_cell =
+            fmt::format("{} / {}",
+                        Measured(row["twin"]) ? Figure(t.figures, "position_rmse_mm", 1.0, 2)
+                                              : std::string("-"),
+                        Figure(t.figures, "recall", 100.0, 1));
       }
     }
     const nlohmann::json& figures = outcome.figures;
-    const std::string failed = outcome.failed;
+    const std::string& failed = outcome.failed;
     const std::string line = fmt::format(
         "| {} | {} | {} | {} | {}x{} | {} | {:.1f} | {} | {} | {} | {} | {} | {} | {} | {} | {} "
         "|\n",
