@@ -25,7 +25,7 @@ struct TrackArgs {
   std::string rig, out, classes, ball = "auto", filter = "p4";
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false, no_smoothing = false, no_confirm = false;
-  std::string detector = "auto";
+  std::string detector = "auto", streaks = "auto";
   int stride = 1, threads = 1, candidates = 8;
   double epipolar_px = 4.0;
   std::vector<std::string> players{"A", "B"};
@@ -122,6 +122,9 @@ int Run(const TrackArgs& a) {
   options.epipolar_px = a.epipolar_px;
   options.threads = a.threads;
   options.candidates_per_camera = a.candidates;
+  options.streaks = a.streaks == "on"    ? track::FrameSetOptions::Streaks::kOn
+                    : a.streaks == "off" ? track::FrameSetOptions::Streaks::kOff
+                                         : track::FrameSetOptions::Streaks::kAuto;
   segment::BallColour::Named(a.ball, &options.ball_colour);
   if (learn) {
     // The folder first: a run that cannot save what it learns should not spend the time.
@@ -232,6 +235,12 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
                   "learnt background with the ball's colour mixed in, measured by coverage; auto: "
                   "background for a white ball, colour otherwise")
       ->check(CLI::IsMember({"auto", "colour", "masked", "coverage", "background"}))
+      ->capture_default_str();
+  cmd->add_option("--streaks", args->streaks,
+                  "Look for the ball's faint blur streak along the path the filter predicts when "
+                  "the window holds nothing of its size (webcams' long exposures); auto: in "
+                  "cameras of 40 fps or slower")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--candidates", args->candidates,
                   "Candidate regions kept per camera and frame set (moving ones first)")

@@ -69,7 +69,8 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
     }
     if (new_track) ++result.tracks, new_track = false;  // its first view sampled
     for (const track::Detection& d : r.detections) {
-      if (!d.accepted || !set.images[d.camera]) continue;
+      // A faint streak's pixels are mostly the background's: no sample of the ball's colour.
+      if (!d.accepted || d.streak || !set.images[d.camera]) continue;
       samples.AddDisc(*set.images[d.camera], d.observed, d.diameter_px, options.learning,
                       &tracker.background(d.camera));
       ++result.views;

@@ -15,6 +15,7 @@
 #include "p4/segment/color_classes.h"
 #include "p4/segment/colour_learning.h"
 #include "p4/segment/foreground_finder.h"
+#include "p4/segment/streak_search.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/look.h"
 #include "p4/sim/renderer.h"
@@ -235,21 +236,39 @@ TEST(ForegroundScene, ATwentyPixelStreakAtASixtiethOfASecond) {
   const double exposure = 1.0 / 60.0;
   const Bias bias = BiasOver(scene, BallColour::Orange(), velocity, exposure);
   EXPECT_EQ(bias.found, bias.tries);
-  // Targets 0.1 px; measured 0.08 px and +0.41 px: the diameter's target is missed (README,
-  // "Measured on many worlds").
-  EXPECT_LE(bias.centre, 0.1);
-  EXPECT_LE(std::abs(bias.diameter), 0.5);
-  // The streak's length says how fast the ball crossed the picture.
+  // Targets 0.1 px; measured 0.25 px and +0.54 px: both missed (README, "Measured on many
+  // worlds"). A streak's pixels are each a small share of the ball; the blocks above min_alpha
+  // are its middle, its faint ends are partly lost. (Before the renderer drew every subpixel cell
+  // at every time sample, its streaks were dashed, and the dashes passed: 0.08 and +0.41 px.)
+  EXPECT_LE(bias.centre, 0.3);
+  EXPECT_LE(std::abs(bias.diameter), 0.6);
+  // The streak's length says how fast the ball crossed the picture: the block regions hold only
+  // pieces of it (the frame below: a piece 5 px off the middle); the search along the predicted
+  // path (streak_search.h) finds it whole.
   const Eigen::Vector3d p(-0.3, 0.1, 0.3);
   const auto samples = Exposure(p, velocity, exposure, 48);
-  const Errors e = Measure(scene, BallColour::Orange(), samples, 2.0, 5000);
+  scene.Render(samples, 2.0, 5000);
+  const Silhouette exact = Exact(scene.camera(), samples);
   const auto a = scene.camera().Project(samples.front()),
              b = scene.camera().Project(samples.back());
   const double length = (*b - *a).norm() * 48.0 / 47.0;
-  std::printf("streak %.1f px, measured %.1f px\n", length, e.streak_px);
-  ASSERT_TRUE(e.found);
+  // Predicted 1 cm off, its motion over a frame of 1/30 s (the exposure is half of it).
+  const Eigen::Vector3d guess = p + Eigen::Vector3d(0.01, 0.0, -0.005);
+  const auto from = scene.camera().Project(guess - velocity / 60.0),
+             to = scene.camera().Project(guess + velocity / 60.0),
+             mid = scene.camera().Project(guess);
+  const double diameter =
+      2.0 * table::kBallRadius * scene.camera().fx / (scene.camera().cam_from_world * p).z();
+  StreakSearch search;
+  const auto hit = search.Find(scene.frame().View(), scene.background(), BallColour::Orange(),
+                               mid->x(), mid->y(), to->x() - from->x(), to->y() - from->y(),
+                               (*to - *from).norm(), diameter, {});
+  ASSERT_TRUE(hit.has_value());
+  const double off = std::hypot(hit->cx - exact.centre.x(), hit->cy - exact.centre.y());
+  std::printf("streak %.1f px, found %.1f px long, %.2f px off\n", length, hit->length_px, off);
   EXPECT_GT(length, 15.0);
-  EXPECT_NEAR(e.streak_px, length, 0.25 * length);  // measured 20 % short
+  EXPECT_NEAR(hit->length_px, length, 0.25 * length);
+  EXPECT_LE(off, 1.0);
 }
 
 TEST(ForegroundScene, ASmallStreakWhoseChromaTheEncoderSmearedIsStillTheBall) {
@@ -279,9 +298,10 @@ TEST(ForegroundScene, ASmallStreakWhoseChromaTheEncoderSmearedIsStillTheBall) {
   }
   std::printf("small smeared streak found in %d of 12 frames (%d without the tables)\n", found,
               found_without_tables);
-  // Measured: 8 of 12 with the tables, 9 without (judging every covered pixel: 3 of 12).
-  EXPECT_GE(found_without_tables, 8);
-  EXPECT_GE(found, found_without_tables - 1);
+  // Measured: 6 of 12 with the tables, 8 without (judging every covered pixel: 3 of 12; with the
+  // renderer's dashed streaks of before 8 and 9).
+  EXPECT_GE(found_without_tables, 7);
+  EXPECT_GE(found, found_without_tables - 2);
 }
 
 TEST(ForegroundScene, ABallOfThreePixels) {
@@ -528,6 +548,83 @@ TEST(BallEdge, ChromaTheEncoderSmearedDoesNotMoveTheCentre) {
   EXPECT_GE(e.measured, 8);  // measured: 9 of 12
   EXPECT_LE(e.rms, 0.2);
   EXPECT_LT(e.rms, 0.5 * e.region_rms);
+}
+
+// A webcam's frame: 1/30 s of a ball at 12 m/s at 640x360 is a streak of about 60 px in which the
+// ball is under a tenth of each pixel (a few levels): too faint for any per-block threshold, found
+// along the path the filter predicts.
+TEST(StreakSearchScene, AFaintStreakAlongThePredictedPath) {
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const Eigen::Vector3d velocity(12.0, -1.0, 1.5);
+  const double exposure = 1.0 / 30.0, frame = 1.0 / 25.0;
+  ForegroundFinder finder;
+  StreakSearch search;
+  StreakSearchOptions options;
+  int found = 0, by_blocks = 0, within = 0;
+  double sum_length_ratio = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::Vector3d p = Place(k);
+    const auto samples = Exposure(p, velocity, exposure, 64);
+    scene.Render(samples, 1.0 + k / 60.0, 999 + k);
+    const Silhouette exact = Exact(scene.camera(), samples);
+    // The filter's prediction: the ball 2 cm off, its motion over a whole frame period.
+    const Eigen::Vector3d guess = p + Eigen::Vector3d(0.015, -0.01, 0.01);
+    const auto a = scene.camera().Project(guess - 0.5 * frame * velocity);
+    const auto b = scene.camera().Project(guess + 0.5 * frame * velocity);
+    const auto m = scene.camera().Project(guess);
+    ASSERT_TRUE(a && b && m);
+    const Eigen::Vector2d d = *b - *a;
+    const double diameter =
+        2.0 * table::kBallRadius * scene.camera().fx / (scene.camera().cam_from_world * p).z();
+    const auto hit = search.Find(scene.frame().View(), scene.background(), BallColour::Orange(),
+                                 m->x(), m->y(), d.x(), d.y(), d.norm(), diameter, options);
+    std::vector<CoverageRegion> regions;
+    finder.Find(scene.frame().View(), scene.background(), BallColour::Orange(), {}, {}, &regions);
+    by_blocks += std::any_of(regions.begin(), regions.end(), [&](const CoverageRegion& r) {
+      return std::hypot(r.region.cx - exact.centre.x(), r.region.cy - exact.centre.y()) < 3.0;
+    });
+    if (!hit) continue;
+    const double error = std::hypot(hit->cx - exact.centre.x(), hit->cy - exact.centre.y());
+    const double length = d.norm() * exposure / frame;
+    std::printf("streak %.1f px (found %.1f), share %.3f (expected %.3f), snr %.1f, off %.2f px\n",
+                length, hit->length_px, hit->share, hit->expected_share, hit->snr, error);
+    ++found;
+    within += error <= 1.5;
+    sum_length_ratio += hit->length_px / length;
+  }
+  std::printf("faint streaks found in %d of 12 (by blocks: %d), %d within 1.5 px\n", found,
+              by_blocks, within);
+  EXPECT_GE(found, 11);
+  // Measured 10 of 12 within 0.75 px, the others 1.6 and 2.5 px off.
+  EXPECT_GE(within, 10);
+  ASSERT_GT(found, 0);
+  EXPECT_NEAR(sum_length_ratio / found, 1.0, 0.3);  // the exposure's share of the frame
+}
+
+TEST(StreakSearchScene, NothingWhereThereIsNoBall) {
+  // The same predictions over frames without the ball: the picture's clutter (players, lines,
+  // noise) must not pass for a streak.
+  Scene scene(sim::ClubLook());
+  scene.Learn(30);
+  const Eigen::Vector3d velocity(12.0, -1.0, 1.5);
+  StreakSearch search;
+  int found = 0;
+  for (int k = 0; k < 12; ++k) {
+    scene.Render({}, 1.0 + k / 60.0, 999 + k);
+    const Eigen::Vector3d p = Place(k);
+    const auto a = scene.camera().Project(p - 0.02 * velocity);
+    const auto b = scene.camera().Project(p + 0.02 * velocity);
+    const auto m = scene.camera().Project(p);
+    const Eigen::Vector2d d = *b - *a;
+    const double diameter =
+        2.0 * table::kBallRadius * scene.camera().fx / (scene.camera().cam_from_world * p).z();
+    found += search
+                 .Find(scene.frame().View(), scene.background(), BallColour::Orange(), m->x(),
+                       m->y(), d.x(), d.y(), d.norm(), diameter, {})
+                 .has_value();
+  }
+  EXPECT_EQ(found, 0);
 }
 
 }  // namespace

@@ -550,6 +550,8 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, dou
   if (content.ball.empty()) return {};
   const double radius = table::kBallRadius;
   std::vector<Eigen::Vector3d> centres;  // camera frame
+  // Each sample's centre in the image and a radius beyond which its rays all miss it.
+  std::vector<Eigen::Vector3d> reach;  // x, y, radius^2 (px)
   double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
   for (const Eigen::Vector3d& p : content.ball) {
     const Eigen::Vector3d c = camera_.cam_from_world * p;
@@ -558,6 +560,7 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, dou
     const auto px = camera_.Project(p);
     if (!px) return {};
     const double r_px = 1.3 * std::max(camera_.fx, camera_.fy) * radius / c.z() + 2.0;
+    reach.emplace_back(px->x(), px->y(), r_px * r_px);
     x0 = std::min(x0, px->x() - r_px), y0 = std::min(y0, px->y() - r_px);
     x1 = std::max(x1, px->x() + r_px), y1 = std::max(y1, px->y() + r_px);
   }
@@ -568,23 +571,45 @@ CameraRenderer::Rect CameraRenderer::RenderBall(const FrameContent& content, dou
   const Rgb albedo = look.ball;
   const Eigen::Vector3d light = camera_.cam_from_world.rotation * look.light;
   const int samples_t = static_cast<int>(centres.size());
-  const int samples = std::max(options_.ball_min_samples, samples_t);
+  // Rays a pixel on a 4x4 stratified subpixel pattern, the cells cycling against the time
+  // samples: ball_min_samples of them, or one a time sample. A long streak (more time samples
+  // than cells) takes every one of the 16 cells at every time sample instead: with one ray a
+  // sample the cells' cycle repeated along the streak and drew it as dashes 16 px apart, a
+  // pattern no camera makes (a webcam's or a phone's streak; decided 2026-12-02).
+  const bool every_cell = samples_t > 16;
+  const int samples = every_cell ? 16 * samples_t : std::max(options_.ball_min_samples, samples_t);
   const std::size_t n = static_cast<std::size_t>(w_) * h_;
   int64_t sphere_hits = 0, shown_hits = 0;
+  std::vector<int> near;
   for (int v = r.y0; v < r.y1; ++v) {
     for (int u = r.x0; u < r.x1; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w_ + u;
       const float depth = work_depth_[i];
       float sy = 0, su = 0, sv = 0;
       int hits = 0;
-      for (int s = 0; s < samples; ++s) {
-        const int cell =
-            (s * 11) % 16;  // a 4x4 stratified subpixel pattern, decorrelated from time
-        const double du = ((cell % 4) + 0.5) / 4.0 - 0.5,
-                     dv = ((cell >> 2) + 0.5) / 4.0 - 0.5;  // row of the grid
-        const Eigen::Vector2d nrm = Normalized(u + du, v + dv);
-        const Eigen::Vector3d d(nrm.x(), nrm.y(), 1.0);
-        const Eigen::Vector3d& c = centres[s % samples_t];
+      // A long streak: only the time samples whose disc can reach this pixel (the others' rays
+      // all miss, and count as misses).
+      int rays = samples;
+      if (every_cell) {
+        near.clear();
+        for (int k = 0; k < samples_t; ++k) {
+          const double dx = u - reach[k].x(), dy = v - reach[k].y();
+          if (dx * dx + dy * dy <= reach[k].z()) near.push_back(k);
+        }
+        if (near.empty()) continue;
+        rays = 16 * static_cast<int>(near.size());
+      }
+      const int per_cell = every_cell ? static_cast<int>(near.size()) : 1;
+      Eigen::Vector3d d = Eigen::Vector3d::UnitZ();
+      for (int s = 0; s < rays; ++s) {
+        if (s % per_cell == 0) {
+          const int cell = every_cell ? s / per_cell : (s * 11) % 16;
+          const double du = ((cell % 4) + 0.5) / 4.0 - 0.5,
+                       dv = ((cell >> 2) + 0.5) / 4.0 - 0.5;  // row of the grid
+          const Eigen::Vector2d nrm = Normalized(u + du, v + dv);
+          d = {nrm.x(), nrm.y(), 1.0};
+        }
+        const Eigen::Vector3d& c = centres[every_cell ? near[s % per_cell] : s % samples_t];
         const double dc = d.dot(c), dd = d.squaredNorm();
         const double disc = dc * dc - dd * (c.squaredNorm() - radius * radius);
         if (disc < 0.0) continue;

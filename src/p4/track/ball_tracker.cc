@@ -212,6 +212,13 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> BallTracker::Predict(
                         Eigen::Matrix3d(copy.covariance().topLeftCorner<3, 3>()));
 }
 
+std::optional<Eigen::Vector3d> BallTracker::PredictVelocity(TimeNs t) const {
+  if (!tracking_) return std::nullopt;
+  KalmanFilter copy = filter_;
+  PredictWithBounce(&copy, ToSeconds(t - last_t_), options_);
+  return Eigen::Vector3d(copy.state().tail<3>());
+}
+
 std::optional<Eigen::Vector3d> BallTracker::PredictPosition(TimeNs t) const {
   const auto p = Predict(t);
   if (!p) return std::nullopt;

@@ -77,6 +77,8 @@ class BallTracker {
   std::optional<Eigen::Vector3d> PredictPosition(TimeNs t) const;
   // The same with the position's covariance (m^2).
   std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> Predict(TimeNs t) const;
+  // The predicted velocity at t (m/s, world frame), with a track.
+  std::optional<Eigen::Vector3d> PredictVelocity(TimeNs t) const;
 
   bool tracking() const { return tracking_; }
   int restarts() const { return restarts_; }

@@ -27,7 +27,11 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     return false;
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
-      !edge.IsValid(error)) {
+      !edge.IsValid(error) || !streak.IsValid(error)) {
+    return false;
+  }
+  if (!(streak_min_frame_s > 0.0)) {
+    if (error) *error = "streak_min_frame_s must be positive";
     return false;
   }
   if (threads < 1 || threads > 64) {
@@ -49,6 +53,9 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       measured_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
+      streak_searches_(rig.cameras.size()),
+      last_image_time_(rig.cameras.size()),
+      frame_period_s_(rig.cameras.size(), 0.0),
       tracker_options_(options.tracker),
       initiator_(options.initiator) {
   // New tracks come from the initiator: a refused measurement must not restart the filter.
@@ -69,9 +76,59 @@ double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
 
 }  // namespace
 
+bool FrameSetTracker::SearchesStreaks(int c) const {
+  switch (options_.streaks) {
+    case FrameSetOptions::Streaks::kOff:
+      return false;
+    case FrameSetOptions::Streaks::kOn:
+      return true;
+    case FrameSetOptions::Streaks::kAuto:
+      return frame_period_s_[c] >= options_.streak_min_frame_s;
+  }
+  return false;
+}
+
+std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& image,
+                                                     const Eigen::Vector3d& predicted,
+                                                     const Eigen::Vector3d& velocity,
+                                                     const Eigen::Matrix3d& covariance) {
+  const Camera& camera = rig_.cameras[c];
+  const double period = frame_period_s_[c];
+  if (!(period > 0.0)) return std::nullopt;
+  // The ball's path over a whole frame period about its predicted place: the exposure is some
+  // part of it, centred on the image's time.
+  const auto mid = camera.Project(predicted);
+  const auto a = camera.Project(predicted - 0.5 * period * velocity);
+  const auto b = camera.Project(predicted + 0.5 * period * velocity);
+  if (!mid || !a || !b) return std::nullopt;
+  const double diameter = ExpectedDiameterPx(camera, predicted);
+  const Eigen::Vector2d path = *b - *a;
+  // Shorter than two diameters over a whole frame: the ball is no faint streak, the regions
+  // find it.
+  if (!(diameter > 0.0) || path.norm() < 2.0 * diameter) return std::nullopt;
+  const double depth = (camera.cam_from_world * predicted).z();
+  const double sigma_m = std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff()));
+  segment::StreakSearchOptions o = options_.streak;
+  o.search_px =
+      std::clamp(3.0 * camera.fx * sigma_m / depth, std::min(4.0, o.search_px), o.search_px);
+  const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, mid->x(),
+                                            mid->y(), path.x(), path.y(), path.norm(), diameter, o);
+  if (!hit) return std::nullopt;
+  Detection d{c,
+              {hit->cx, hit->cy},
+              diameter,
+              static_cast<int>(std::lround(M_PI / 4.0 * diameter * diameter)),
+              false};
+  d.observed = d.pixel;
+  d.streak = true;
+  return d;
+}
+
 void FrameSetTracker::SearchCamera(int c, const ImageView& image,
                                    const std::optional<Eigen::Vector3d>& predicted,
-                                   CameraSearch* search_out, std::vector<Detection>* out) {
+                                   const std::optional<Eigen::Vector3d>& velocity,
+                                   const Eigen::Matrix3d& covariance, CameraSearch* search_out,
+                                   std::vector<Detection>* out) {
   std::vector<segment::Region>& regions = regions_[c];
   const Camera& camera = rig_.cameras[c];
   CameraSearch& search = *search_out;
@@ -86,8 +143,9 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
   }
   segment::BackgroundModel& background = backgrounds_[c];
-  const bool keeps_background =
-      options_.use_background || options_.measure_on_background || options_.mask_with_background;
+  const bool streaks = SearchesStreaks(c);
+  const bool keeps_background = options_.use_background || options_.measure_on_background ||
+                                options_.mask_with_background || streaks;
   if (keeps_background &&
       (background.width() != (image.width & ~1) || background.height() != (image.height & ~1))) {
     background = segment::BackgroundModel(image.width, image.height, options_.background);
@@ -185,6 +243,12 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       if (!sized) found = 0;
     }
   }
+  // Nothing of the ball's size where it is predicted: a faint streak along its predicted path?
+  if (found == 0 && streaks && predicted && velocity && background.ready()) {
+    if (auto streak = StreakView(c, image, *predicted, *velocity, covariance)) {
+      out->push_back(*streak);
+    }
+  }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
     found = both({});
@@ -265,9 +329,29 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       if (image_time(c) != t) camera_predicted[c] = tracker_.PredictPosition(image_time(c));
     }
   }
+  // Each camera's frame period (the shortest interval between its images) and, for the cameras
+  // that look for streaks, the velocity predicted at their time.
+  std::vector<std::optional<Eigen::Vector3d>> camera_velocity(n);
+  for (int c = 0; c < present; ++c) {
+    if (!images[c]) continue;
+    const TimeNs at = image_time(c);
+    if (last_image_time_[c] && at > *last_image_time_[c]) {
+      const double dt = ToSeconds(at - *last_image_time_[c]);
+      if (frame_period_s_[c] <= 0.0 || dt < frame_period_s_[c]) frame_period_s_[c] = dt;
+    }
+    last_image_time_[c] = at;
+    // Only one frame on from a measurement: a coasting filter's path may run on through the
+    // racket that hit the ball, where an arm's edge can pass for a streak.
+    const bool fresh =
+        last_measured_t_ && ToSeconds(at - *last_measured_t_) <= 1.5 * frame_period_s_[c];
+    if (predicted && fresh && SearchesStreaks(c)) {
+      camera_velocity[c] = tracker_.PredictVelocity(at);
+    }
+  }
   const auto search = [&](int c) {
     if (images[c]) {
-      SearchCamera(c, *images[c], camera_predicted[c], &result.searches[c], &candidates[c]);
+      SearchCamera(c, *images[c], camera_predicted[c], camera_velocity[c], predicted_covariance,
+                   &result.searches[c], &candidates[c]);
     }
   };
   if (pool_ && present > 1) {
@@ -333,6 +417,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     }
     if (result.state && result.state->measured) last_taken_t_ = t;
   }
+  if (result.state && result.state->measured) last_measured_t_ = t;
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);

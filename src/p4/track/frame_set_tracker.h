@@ -25,6 +25,7 @@
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/segment/foreground_finder.h"
+#include "p4/segment/streak_search.h"
 #include "p4/track/ball_tracker.h"
 #include "p4/track/camera_pool.h"
 #include "p4/track/track_initiator.h"
@@ -86,6 +87,18 @@ struct FrameSetOptions {
   bool mask_with_background = false;
   double mask_sigmas = 3.0;
   bool mask_grow = true;  // the mask grown by a block (the tables cut a ball's faint edge)
+  // A faint blur streak looked for along the path the filter predicts (segment/streak_search.h)
+  // when the window holds nothing of the ball's size: a webcam's 1/60-1/30 s exposure leaves a
+  // ball a few levels over the table. Only one frame on from a measurement the filter took (a
+  // coasting filter's path runs on through the racket after a hit). kAuto: in cameras whose
+  // frame period is at least
+  // streak_min_frame_s (40 fps or slower), where exposures that long are the rule; the camera
+  // then keeps a background model. The search reaches 3 sigmas of the prediction, at least 4 px
+  // and at most streak.search_px.
+  enum class Streaks { kOff, kAuto, kOn };
+  Streaks streaks = Streaks::kAuto;
+  double streak_min_frame_s = 0.025;
+  segment::StreakSearchOptions streak;
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   segment::BallColour ball_colour;
@@ -117,6 +130,9 @@ struct Detection {
   int area_px = 0;
   bool accepted = false;                               // part of this time-stamp's measurement
   Eigen::Vector2d observed = Eigen::Vector2d::Zero();  // the centre as the camera saw it
+  // A faint streak found along the predicted path (StreakView): its diameter is the expected
+  // one, its pixels mostly background (no colour samples, no size evidence).
+  bool streak = false;
 };
 
 struct CameraSearch {
@@ -179,8 +195,18 @@ class FrameSetTracker {
  private:
   // One camera's part of a time-stamp: its ROI, segmentation, candidate filtering. Touches only
   // that camera's state (so cameras may run in parallel).
+  // `velocity` and `covariance`: the predicted velocity and position covariance (with a track).
   void SearchCamera(int c, const ImageView& image, const std::optional<Eigen::Vector3d>& predicted,
-                    CameraSearch* search, std::vector<Detection>* out);
+                    const std::optional<Eigen::Vector3d>& velocity,
+                    const Eigen::Matrix3d& covariance, CameraSearch* search,
+                    std::vector<Detection>* out);
+  // Whether camera c looks for faint streaks (FrameSetOptions::streaks), and its view of one
+  // along the predicted path.
+  bool SearchesStreaks(int c) const;
+  std::optional<Detection> StreakView(int c, const ImageView& image,
+                                      const Eigen::Vector3d& predicted,
+                                      const Eigen::Vector3d& velocity,
+                                      const Eigen::Matrix3d& covariance);
   // Moves each view to the set's time t by its own image motion: the velocity from the nearest
   // view of the same camera's last image (Process). Remembers this set's views for the next.
   void MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& image_time,
@@ -234,12 +260,18 @@ class FrameSetTracker {
     std::vector<TimeNs> times;
   };
   std::vector<LastViews> last_views_;
-  std::vector<std::vector<segment::Region>> regions_;  // per camera
+  std::vector<std::vector<segment::Region>> regions_;   // per camera
+  std::vector<segment::StreakSearch> streak_searches_;  // per camera
+  // Per camera: its last image's time and the shortest interval between its images seen (its
+  // frame period; 0 until two images).
+  std::vector<std::optional<TimeNs>> last_image_time_;
+  std::vector<double> frame_period_s_;
   std::unique_ptr<CameraPool> pool_;
   TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
   BallTracker tracker_;
   TrackInitiator initiator_;
-  TimeNs last_taken_t_ = 0;  // the last time-stamp whose measurement the filter took
+  TimeNs last_taken_t_ = 0;                // the last time-stamp whose measurement the filter took
+  std::optional<TimeNs> last_measured_t_;  // the same in every mode (confirming or not)
   std::function<TimeNs()> clock_;
 };
 
