@@ -180,6 +180,7 @@ void BM_Triangulate(benchmark::State& state) {
   const Rig rig = sim::ClubRig(static_cast<int>(state.range(0)), 1280, 720, false);
   const Eigen::Vector3d point(0.3, 0.1, 0.25);
   std::vector<Observation> observations;
+  observations.reserve(static_cast<std::size_t>(rig.size()));
   for (int c = 0; c < rig.size(); ++c)
     observations.push_back({c, rig.cameras[c].Project(point).value()});
   for (auto _ : state) benchmark::DoNotOptimize(TriangulateObservations(rig.cameras, observations));

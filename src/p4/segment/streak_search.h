@@ -15,7 +15,7 @@
 //
 // Measured (foreground_scene_test.cc): 50 px streaks of a 5 px ball at 640x360, each pixel under
 // a tenth ball, found in 12 of 12 frames (the block regions: 4), 10 within 0.75 px of the exact
-// centre, 23-63 sigmas; nothing in 12 frames without the ball. 2.3 ms a search at 640x480
+// centre, 23-63 sigmas; nothing in 12 frames without the ball. 2.2 ms a search at 640x480
 // (p4_micro_bench, BM_StreakSearch).
 //
 // Pixel coordinates: centres at integers; the segment joins the ball's centres at the start and
