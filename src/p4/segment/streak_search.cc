@@ -135,12 +135,12 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
     double score = -1e300, cx = 0, cy = 0, length = 0, angle = 0;
     Sums sums;
   } best;
+  // The mean share of the ball in a streak of this length: the disc's area over the capsule's.
   const double disc = M_PI * r * r;
-  // A pixel of a streak of this length is at most a few times its mean share ball: what differs
-  // more (a player, a line) counts only as much.
-  const auto clip = [&](double length) {
-    return o.max_pixel_share * disc / (length * diameter_px + disc);
-  };
+  const auto expected_share = [&](double length) { return disc / (length * diameter_px + disc); };
+  // A pixel of a streak is at most a few times its mean share ball: what differs more (a player,
+  // a line) counts only as much.
+  const auto clip = [&](double length) { return o.max_pixel_share * expected_share(length); };
   const auto consider = [&](double cx, double cy, double length, double angle) {
     const Sums t =
         Template(cx, cy, std::cos(angle), std::sin(angle), length, -1.0, r, clip(length));
@@ -207,7 +207,7 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
       }
       const Sums t = ShapeSums(static_cast<int>(std::lround(best.cx + dx)),
                                static_cast<int>(std::lround(best.cy + dy)), null_limit);
-      if (t.n * 2 < static_cast<int>(shape_.size())) continue;  // mostly outside the picture
+      if (t.n == 0) continue;  // reaches outside the window
       null_.push_back(Score(t));
     }
   }
@@ -224,7 +224,7 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
   if (hit.snr < o.min_snr) return std::nullopt;
   // A streak: its mean share is what the disc smeared over its length gives, the ring is clear.
   hit.share = best.sums.e > 0.0 ? best.sums.m / best.sums.e : 0.0;
-  hit.expected_share = disc / (best.length * diameter_px + disc);
+  hit.expected_share = expected_share(best.length);
   if (hit.share < o.min_share_ratio * hit.expected_share ||
       hit.share > o.max_share_ratio * hit.expected_share) {
     return std::nullopt;

@@ -204,19 +204,24 @@ bool BallTracker::SlowAndNotFalling() const {
   return speed < options_.slow_speed && std::abs(fall) < options_.fall_share * g;
 }
 
-std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> BallTracker::Predict(TimeNs t) const {
+std::optional<KalmanFilter> BallTracker::PredictedFilter(TimeNs t) const {
   if (!tracking_) return std::nullopt;
   KalmanFilter copy = filter_;
   PredictWithBounce(&copy, ToSeconds(t - last_t_), options_);
-  return std::make_pair(Eigen::Vector3d(copy.state().head<3>()),
-                        Eigen::Matrix3d(copy.covariance().topLeftCorner<3, 3>()));
+  return copy;
+}
+
+std::optional<std::pair<Eigen::Vector3d, Eigen::Matrix3d>> BallTracker::Predict(TimeNs t) const {
+  const auto f = PredictedFilter(t);
+  if (!f) return std::nullopt;
+  return std::make_pair(Eigen::Vector3d(f->state().head<3>()),
+                        Eigen::Matrix3d(f->covariance().topLeftCorner<3, 3>()));
 }
 
 std::optional<Eigen::Vector3d> BallTracker::PredictVelocity(TimeNs t) const {
-  if (!tracking_) return std::nullopt;
-  KalmanFilter copy = filter_;
-  PredictWithBounce(&copy, ToSeconds(t - last_t_), options_);
-  return Eigen::Vector3d(copy.state().tail<3>());
+  const auto f = PredictedFilter(t);
+  if (!f) return std::nullopt;
+  return Eigen::Vector3d(f->state().tail<3>());
 }
 
 std::optional<Eigen::Vector3d> BallTracker::PredictPosition(TimeNs t) const {

@@ -88,6 +88,8 @@ class BallTracker {
   bool SlowAndNotFalling() const;
   // Predicts the filter to dt ahead, with the table bounce.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
+  // A copy of the filter predicted to t (with the table bounce), with a track.
+  std::optional<KalmanFilter> PredictedFilter(TimeNs t) const;
   // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.
   struct Velocity {
     Eigen::Vector3d mean;

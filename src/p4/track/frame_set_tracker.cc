@@ -342,8 +342,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     last_image_time_[c] = at;
     // Only one frame on from a measurement: a coasting filter's path may run on through the
     // racket that hit the ball, where an arm's edge can pass for a streak.
-    const bool fresh =
-        last_measured_t_ && ToSeconds(at - *last_measured_t_) <= 1.5 * frame_period_s_[c];
+    const bool fresh = last_taken_t_ && ToSeconds(at - *last_taken_t_) <= 1.5 * frame_period_s_[c];
     if (predicted && fresh && SearchesStreaks(c)) {
       camera_velocity[c] = tracker_.PredictVelocity(at);
     }
@@ -405,8 +404,9 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     // did not take the tracklet's earlier points (the ball was hit and the filter coasted, then
     // its grown gate let the ball in again; or the track had followed something else): the
     // filter replayed from the tracklet knows the new flight, and its points become rows.
-    const bool missed_points = confirmed && confirmed->points.size() >= 2 &&
-                               confirmed->points[confirmed->points.size() - 2].t > last_taken_t_;
+    const bool missed_points =
+        confirmed && confirmed->points.size() >= 2 &&
+        (!last_taken_t_ || confirmed->points[confirmed->points.size() - 2].t > *last_taken_t_);
     if (confirmed && (!took || missed_points)) {
       used.clear();
       AdoptTracklet(*confirmed, &result);
@@ -415,9 +415,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       result.tentative = result.measurement.has_value();
       used.clear();
     }
-    if (result.state && result.state->measured) last_taken_t_ = t;
   }
-  if (result.state && result.state->measured) last_measured_t_ = t;
+  if (result.state && result.state->measured) last_taken_t_ = t;
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);

@@ -91,10 +91,9 @@ struct FrameSetOptions {
   // when the window holds nothing of the ball's size: a webcam's 1/60-1/30 s exposure leaves a
   // ball a few levels over the table. Only one frame on from a measurement the filter took (a
   // coasting filter's path runs on through the racket after a hit). kAuto: in cameras whose
-  // frame period is at least
-  // streak_min_frame_s (40 fps or slower), where exposures that long are the rule; the camera
-  // then keeps a background model. The search reaches 3 sigmas of the prediction, at least 4 px
-  // and at most streak.search_px.
+  // frame period is at least streak_min_frame_s (40 fps or slower), where exposures that long
+  // are the rule; the camera then keeps a background model. The search reaches 3 sigmas of the
+  // prediction, at least 4 px and at most streak.search_px.
   enum class Streaks { kOff, kAuto, kOn };
   Streaks streaks = Streaks::kAuto;
   double streak_min_frame_s = 0.025;
@@ -270,8 +269,7 @@ class FrameSetTracker {
   TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
   BallTracker tracker_;
   TrackInitiator initiator_;
-  TimeNs last_taken_t_ = 0;                // the last time-stamp whose measurement the filter took
-  std::optional<TimeNs> last_measured_t_;  // the same in every mode (confirming or not)
+  std::optional<TimeNs> last_taken_t_;  // the last time-stamp whose measurement the filter took
   std::function<TimeNs()> clock_;
 };
 
