@@ -238,8 +238,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--streaks", args->streaks,
                   "Look for the ball's faint blur streak along the path the filter predicts when "
-                  "the window holds nothing of its size (webcams' long exposures); auto: in "
-                  "cameras of 40 fps or slower")
+                  "the window holds nothing of its size, and in the whole image with no track or "
+                  "nothing where predicted (webcams' long exposures); auto: in cameras of 40 fps "
+                  "or slower")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--candidates", args->candidates,

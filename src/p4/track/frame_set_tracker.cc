@@ -27,7 +27,7 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     return false;
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
-      !edge.IsValid(error) || !streak.IsValid(error)) {
+      !edge.IsValid(error) || !streak.IsValid(error) || !streak_finder.IsValid(error)) {
     return false;
   }
   if (!(streak_min_frame_s > 0.0)) {
@@ -54,6 +54,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       static_spots_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       streak_searches_(rig.cameras.size()),
+      streak_finders_(rig.cameras.size()),
       last_image_time_(rig.cameras.size()),
       frame_period_s_(rig.cameras.size(), 0.0),
       tracker_options_(options.tracker),
@@ -72,6 +73,18 @@ namespace {
 double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
   const double depth = (camera.cam_from_world * point).z();
   return depth > 0.0 ? 2.0 * table::kBallRadius * camera.fx / depth : 0.0;
+}
+
+// Camera c's view of a faint streak: its middle, the ball's diameter given to it.
+Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter) {
+  Detection d{c,
+              {hit.cx, hit.cy},
+              diameter,
+              static_cast<int>(std::lround(M_PI / 4.0 * diameter * diameter)),
+              false};
+  d.observed = d.pixel;
+  d.streak = true;
+  return d;
 }
 
 }  // namespace
@@ -114,14 +127,32 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
   const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, mid->x(),
                                             mid->y(), path.x(), path.y(), path.norm(), diameter, o);
   if (!hit) return std::nullopt;
-  Detection d{c,
-              {hit->cx, hit->cy},
-              diameter,
-              static_cast<int>(std::lround(M_PI / 4.0 * diameter * diameter)),
-              false};
-  d.observed = d.pixel;
-  d.streak = true;
-  return d;
+  return StreakDetection(c, *hit, diameter);
+}
+
+void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
+  const Camera& camera = rig_.cameras[c];
+  const double period = frame_period_s_[c];
+  // The ball's size over the table's middle, a little above it.
+  const double diameter = ExpectedDiameterPx(camera, Eigen::Vector3d(0.0, 0.0, 0.2));
+  if (!(period > 0.0) || !(diameter > 0.0)) return;
+  std::vector<segment::StreakCandidate> found;
+  streak_finders_[c].Find(image, backgrounds_[c], options_.ball_colour, options_.streak_finder,
+                          &found);
+  for (const segment::StreakCandidate& s : found) {
+    // Shorter than two diameters: no faint streak (the regions find such a ball).
+    if (s.length_px < 2.0 * diameter) continue;
+    segment::StreakSearchOptions o = options_.streak;
+    o.search_px = std::min(o.search_px, 4.0);
+    const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, s.cx,
+                                              s.cy, std::cos(s.angle), std::sin(s.angle),
+                                              1.5 * s.length_px, diameter, o);
+    if (!hit) continue;
+    // A disc of d px smeared along the streak shares about d^2 of a template d0 wide: d from the
+    // share's ratio to what d0 would give.
+    out->push_back(
+        StreakDetection(c, *hit, diameter * std::sqrt(hit->share / hit->expected_share)));
+  }
 }
 
 void FrameSetTracker::SearchCamera(int c, const ImageView& image,
@@ -244,14 +275,22 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
   }
   // Nothing of the ball's size where it is predicted: a faint streak along its predicted path?
+  bool streak_seen = false;
   if (found == 0 && streaks && predicted && velocity && background.ready()) {
     if (auto streak = StreakView(c, image, *predicted, *velocity, covariance)) {
       out->push_back(*streak);
+      streak_seen = true;
     }
   }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
     found = both({});
+  }
+  // No track, or nothing of it where predicted: the ball may be nowhere sharp, only a faint
+  // streak somewhere.
+  if ((!predicted || (search.fell_back && !streak_seen)) && streaks && options_.streaks_anywhere &&
+      background.ready()) {
+    StreakViews(c, image, out);
   }
   // Every region is looked at (a static spot must stay known however many there are). Regions
   // that were at the same place in the last set (a letter, a lamp; the ball in play moves) come
@@ -376,12 +415,24 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     for (const Hypothesis& h : hypotheses) {
       if (h.fragment) continue;  // a new track starts from whole balls
       TrackletPoint p{t, ToMeasurement(h), {}};
-      for (const auto& [c, k] : h.members) p.detections.push_back(offset[c] + k);
-      if (std::any_of(p.detections.begin(), p.detections.end(),
-                      [&](int i) { return taken_detection[i]; })) {
-        continue;
+      p.streak = true;
+      for (const auto& [c, k] : h.members) {
+        p.detections.push_back(offset[c] + k);
+        p.streak = p.streak && candidates[c][k].streak;
       }
-      for (int i : p.detections) taken_detection[i] = true;
+      const bool taken = std::any_of(p.detections.begin(), p.detections.end(),
+                                     [&](int i) { return taken_detection[i]; });
+      const bool repeated = std::any_of(points.begin(), points.end(), [&](const TrackletPoint& q) {
+        return std::all_of(p.detections.begin(), p.detections.end(), [&](int i) {
+          return std::find(q.detections.begin(), q.detections.end(), i) != q.detections.end();
+        });
+      });
+      if (taken || repeated) continue;
+      // A faint streak's size says little: a clutter spot that meets its epipolar line may be
+      // paired with it first, so it stays free for the others.
+      for (const auto& [c, k] : h.members) {
+        if (!candidates[c][k].streak) taken_detection[offset[c] + k] = true;
+      }
       points.push_back(std::move(p));
     }
     confirmed = initiator_.Push(t, points);

@@ -25,6 +25,7 @@
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/segment/foreground_finder.h"
+#include "p4/segment/streak_finder.h"
 #include "p4/segment/streak_search.h"
 #include "p4/track/ball_tracker.h"
 #include "p4/track/camera_pool.h"
@@ -98,6 +99,11 @@ struct FrameSetOptions {
   Streaks streaks = Streaks::kAuto;
   double streak_min_frame_s = 0.025;
   segment::StreakSearchOptions streak;
+  // With no track, or nothing of it where predicted, cameras that look for streaks also look
+  // for them in the whole image (segment/streak_finder.h; each candidate then measured by the
+  // streak search above), so a track can start from a ball that is nowhere sharp.
+  bool streaks_anywhere = true;
+  segment::StreakFinderOptions streak_finder;
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   segment::BallColour ball_colour;
@@ -129,8 +135,9 @@ struct Detection {
   int area_px = 0;
   bool accepted = false;                               // part of this time-stamp's measurement
   Eigen::Vector2d observed = Eigen::Vector2d::Zero();  // the centre as the camera saw it
-  // A faint streak found along the predicted path (StreakView): its diameter is the expected
-  // one, its pixels mostly background (no colour samples, no size evidence).
+  // A faint streak found along the predicted path (StreakView) or anywhere (StreakViews): its
+  // diameter is the expected one or estimated from its share, its pixels mostly background (no
+  // colour samples, little size evidence).
   bool streak = false;
 };
 
@@ -206,6 +213,9 @@ class FrameSetTracker {
                                       const Eigen::Vector3d& predicted,
                                       const Eigen::Vector3d& velocity,
                                       const Eigen::Matrix3d& covariance);
+  // With no track: the streaks anywhere in camera c's picture (StreakFinder), each measured by
+  // the streak search; their diameters from their shares about the ball's size over the table.
+  void StreakViews(int c, const ImageView& image, std::vector<Detection>* out);
   // Moves each view to the set's time t by its own image motion: the velocity from the nearest
   // view of the same camera's last image (Process). Remembers this set's views for the next.
   void MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& image_time,
@@ -261,6 +271,7 @@ class FrameSetTracker {
   std::vector<LastViews> last_views_;
   std::vector<std::vector<segment::Region>> regions_;   // per camera
   std::vector<segment::StreakSearch> streak_searches_;  // per camera
+  std::vector<segment::StreakFinder> streak_finders_;   // per camera
   // Per camera: its last image's time and the shortest interval between its images seen (its
   // frame period; 0 until two images).
   std::vector<std::optional<TimeNs>> last_image_time_;

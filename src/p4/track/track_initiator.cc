@@ -12,12 +12,13 @@ namespace p4::track {
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
   if (confirm_points < 2 || !(min_travel >= 0.0) || !(min_travel_speed >= 0.0) || !(gate > 0.0) ||
       !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) || !(fall_span_s > 0.0) ||
-      !(fall_tolerance > 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) ||
-      max_tracklets < 1 || max_missed < 0) {
+      !(fall_tolerance > 0.0) || !(fit_tolerance > 0.0) || !(fit_sigmas >= 0.0) ||
+      !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 ||
+      min_confirm_points < 2 || min_confirm_points > confirm_points || !(confirm_span_s > 0.0)) {
     if (error) {
       *error =
-          "track initiator: need confirm_points >= 2, positive gate, gap, speed and tracklets, "
-          "and a span longer than the gap";
+          "track initiator: need 2 <= min_confirm_points <= confirm_points, positive gate, gap, "
+          "confirming span, speed and tracklets, and a span longer than the gap";
     }
     return false;
   }
@@ -29,6 +30,34 @@ TrackInitiator::TrackInitiator(const TrackInitiatorOptions& options) : options_(
 namespace {
 
 double Sigma(const Measurement& m) { return std::sqrt(std::max(0.0, m.covariance.trace() / 3.0)); }
+
+// RMS distance of the points from the best flight through them: p0 + v t + a t^2 / 2 with a
+// gravity and the drag at the mean velocity (first fitted without drag), by least squares.
+double FlightMisfit(const std::vector<TrackletPoint>& points, double gravity,
+                    double drag_per_mass) {
+  const auto n = static_cast<Eigen::Index>(points.size());
+  Eigen::MatrixXd a(n, 2);
+  Eigen::MatrixXd b(n, 3);
+  const TimeNs t0 = points.front().t;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double t = ToSeconds(points[static_cast<std::size_t>(i)].t - t0);
+    a.row(i) << 1.0, t;
+  }
+  const auto qr = a.colPivHouseholderQr();
+  Eigen::Vector3d accel(0.0, 0.0, -gravity);
+  Eigen::MatrixXd fit;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double t = a(i, 1);
+      b.row(i) = (points[static_cast<std::size_t>(i)].measurement.position - 0.5 * t * t * accel)
+                     .transpose();
+    }
+    fit = qr.solve(b);  // row 0: p0, row 1: v
+    const Eigen::Vector3d v = fit.row(1).transpose();
+    accel = Eigen::Vector3d(0.0, 0.0, -gravity) - drag_per_mass * v.norm() * v;
+  }
+  return std::sqrt((a * fit - b).squaredNorm() / static_cast<double>(n));
+}
 
 }  // namespace
 
@@ -56,7 +85,23 @@ std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& track
 
 bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   const auto& points = tracklet.points;
-  if (static_cast<int>(points.size()) < options_.confirm_points) return false;
+  const int n = static_cast<int>(points.size());
+  const bool long_enough =
+      n >= options_.confirm_points ||
+      (n >= options_.min_confirm_points &&
+       ToSeconds(points.back().t - points.front().t) >= options_.confirm_span_s &&
+       std::all_of(points.begin(), points.end(), [](const TrackletPoint& p) { return p.streak; }));
+  if (!long_enough) return false;
+  // One flight through the newest confirm_points: a stray that joined a still spot, or a hand's
+  // turn, fits none (older points may lie before a bounce).
+  const std::vector<TrackletPoint> newest(points.end() - std::min(n, options_.confirm_points),
+                                          points.end());
+  double sigma = 0.0;
+  for (const TrackletPoint& p : newest) sigma = std::max(sigma, Sigma(p.measurement));
+  if (FlightMisfit(newest, options_.gravity, options_.drag_per_mass) >
+      options_.fit_tolerance + options_.fit_sigmas * sigma) {
+    return false;
+  }
   const Eigen::Vector3d travel =
       points.back().measurement.position - points.front().measurement.position;
   const double span = ToSeconds(points.back().t - points.front().t);
@@ -67,12 +112,10 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   if (span < options_.fall_span_s) return false;
   Eigen::MatrixXd a(points.size(), 3);
   Eigen::VectorXd z(points.size());
-  double sigma = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double t = ToSeconds(points[i].t - points.front().t);
     a.row(i) << 1.0, t, t * t;
     z(i) = points[i].measurement.position.z();
-    sigma = std::max(sigma, Sigma(points[i].measurement));
   }
   const Eigen::Vector3d fit = a.colPivHouseholderQr().solve(z);
   const double rms = std::sqrt((a * fit - z).squaredNorm() / static_cast<double>(points.size()));

@@ -26,7 +26,13 @@
 namespace p4::track {
 
 struct TrackInitiatorOptions {
-  int confirm_points = 4;    // points in a row that confirm a tracklet
+  int confirm_points = 4;  // points in a row that confirm a tracklet...
+  // ...or at least min_confirm_points spanning confirm_span_s, each seen as a blur streak in
+  // every view (it moved two diameters or more within one exposure: not a hand, not a lamp).
+  // Cameras of 30 fps or slower see a flight between bounces in few frames, and 3 of them span
+  // as long as 6 at 60 fps.
+  int min_confirm_points = 3;
+  double confirm_span_s = 0.075;
   double min_travel = 0.10;  // m between its first and last point (2.5 ball diameters)...
   // ...at this mean speed at least (m/s): slower, a hand or a shirt moves as far; a slow ball
   // (the top of a toss) confirms by its fall below.
@@ -36,6 +42,11 @@ struct TrackInitiatorOptions {
   // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) is confirmed too.
   double fall_span_s = 0.1;
   double fall_tolerance = 0.3;
+  // The newest confirm_points must fit one flight (gravity and drag, no spin, no bounce) within
+  // this RMS (m) plus fit_sigmas of the measurements: the gate below, from two points, is wide
+  // when they are 40 ms apart (a still speck paired with a moving one flies along a ray).
+  double fit_tolerance = 0.01;
+  double fit_sigmas = 1.5;
   double gate = 0.03;        // m of model error (spin, a bounce's start) in the prediction...
   double gate_sigmas = 4.0;  // ...plus this many sigmas of the measurements and the velocity
   double max_gap_s = 0.07;   // a tracklet not extended this long ends...
@@ -56,7 +67,8 @@ struct TrackletPoint {
   TimeNs t = 0;
   Measurement measurement;
   std::vector<int> detections;
-  int64_t stamp = 0;  // set by the initiator: which of its time-stamps
+  bool streak = false;  // every view of it is a faint blur streak
+  int64_t stamp = 0;    // set by the initiator: which of its time-stamps
 };
 
 struct Tracklet {
@@ -67,7 +79,8 @@ class TrackInitiator {
  public:
   explicit TrackInitiator(const TrackInitiatorOptions& options = {});
 
-  // One time-stamp's candidates (strictly increasing t; no two share a detection). Returns the
+  // One time-stamp's candidates (strictly increasing t; no two share a detection, but for a
+  // faint streak's, whose size cannot tell which pairing is the ball). Returns the
   // tracklet confirmed at t, if any (the longest when several); it is handed over and no longer
   // kept. Its last point is one of `candidates`.
   std::optional<Tracklet> Push(TimeNs t, std::span<const TrackletPoint> candidates);

@@ -132,6 +132,69 @@ TEST(TrackInitiator, ATossNearItsTopIsConfirmedByItsFall) {
   EXPECT_LE(*confirmed_at, 16);
 }
 
+// Points at 25 sets per second (a webcam) of the drive above, 1 cm of noise (a 640x480 view).
+std::vector<TrackletPoint> WebcamPoints(int n, bool streak, std::mt19937* rng) {
+  std::normal_distribution<double> noise(0.0, 0.01);
+  std::vector<TrackletPoint> out;
+  for (int k = 0; k < n; ++k) {
+    const double t = k / 25.0;
+    TrackletPoint p;
+    p.t = FromSeconds(t);
+    p.measurement.position = Eigen::Vector3d(-1.2 + 8.0 * t + noise(*rng), 0.1 + noise(*rng),
+                                             0.2 + 1.5 * t - 4.9 * t * t + noise(*rng));
+    p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
+    p.detections = {1};
+    p.streak = streak;
+    out.push_back(p);
+  }
+  return out;
+}
+
+TEST(TrackInitiator, ThreeStreaksOfAWebcamConfirmAFlightThreePlainPointsDoNot) {
+  // Three frames of 25 fps span 80 ms, as six at 60 fps; seen as blur streaks they moved two
+  // diameters or more in one exposure: no hand, no lamp.
+  for (const bool streak : {true, false}) {
+    std::mt19937 rng(11);
+    TrackInitiator initiator;
+    std::optional<Tracklet> confirmed;
+    for (const TrackletPoint& p : WebcamPoints(3, streak, &rng)) {
+      confirmed = initiator.Push(p.t, std::vector<TrackletPoint>{p});
+    }
+    EXPECT_EQ(confirmed.has_value(), streak) << (streak ? "streaks" : "plain points");
+  }
+  // The fourth plain point confirms.
+  std::mt19937 rng(11);
+  TrackInitiator initiator;
+  std::optional<Tracklet> confirmed;
+  for (const TrackletPoint& p : WebcamPoints(4, false, &rng)) {
+    confirmed = initiator.Push(p.t, std::vector<TrackletPoint>{p});
+  }
+  EXPECT_TRUE(confirmed.has_value());
+}
+
+TEST(TrackInitiator, AJerkyPathFitsNoFlight) {
+  // At 25 sets per second, 1 cm of noise: a speck on a player that jumps on, stops and jumps
+  // again, at a constant height. Each point lies within the wide gate of the two before it, and
+  // it travels 21 cm at 1.8 m/s, but no flight passes through all four (2.7 cm RMS from the
+  // best, 2.5 cm allowed); without the flight fit it would be confirmed.
+  for (const bool fit : {true, false}) {
+    TrackInitiatorOptions options;
+    if (!fit) options.fit_tolerance = 1e3;
+    TrackInitiator initiator(options);
+    std::optional<Tracklet> confirmed;
+    const double ys[] = {0.0, 0.10, 0.095, 0.215};
+    for (int k = 0; k < 4; ++k) {
+      TrackletPoint p;
+      p.t = FromSeconds(k * 0.04);
+      p.measurement.position = Eigen::Vector3d(-2.3, ys[k], 0.4);
+      p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
+      p.detections = {1};
+      confirmed = initiator.Push(p.t, std::vector<TrackletPoint>{p});
+    }
+    EXPECT_EQ(confirmed.has_value(), !fit) << (fit ? "with" : "without") << " the flight fit";
+  }
+}
+
 TEST(TrackInitiator, ValidatesItsOptions) {
   TrackInitiatorOptions o;
   std::string why;
@@ -142,6 +205,12 @@ TEST(TrackInitiator, ValidatesItsOptions) {
   o.max_span_s = o.max_gap_s;
   EXPECT_FALSE(o.IsValid(&why));
   EXPECT_NE(why.find("span"), std::string::npos);
+  o = {};
+  o.min_confirm_points = o.confirm_points + 1;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = {};
+  o.fit_tolerance = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
 }
 
 FrameSetResult Result(int k, bool tentative) {
