@@ -38,6 +38,11 @@ struct BallColour {
   bool IsGrey() const { return std::hypot(lit.u - 128.0f, lit.v - 128.0f) < 30.0f; }
   bool IsWhite() const { return IsGrey() && lit.y > 110.0f; }
   bool IsValid(std::string* error) const;
+  // The ball's colour at shading s: K + s (lit - K) (the model above).
+  Yuv Shaded(float s) const {
+    return {kBlack.y + s * (lit.y - kBlack.y), kBlack.u + s * (lit.u - kBlack.u),
+            kBlack.v + s * (lit.v - kBlack.v)};
+  }
 };
 
 struct Unmixed {

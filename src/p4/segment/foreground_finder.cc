@@ -255,7 +255,7 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
         }
         shade = n ? sum_shade / n : region_shade;
       }
-      const float ball_luma = 16.0f + shade * (ball.lit.y - 16.0f);
+      const float ball_luma = ball.Shaded(shade).y;
       const float back = bg.Luma(x, y);
       const float contrast = ball_luma - back;
       double alpha;

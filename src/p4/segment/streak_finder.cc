@@ -7,8 +7,8 @@ namespace p4::segment {
 
 namespace {
 
-// A family of parallel lines over the block grid: along x (or y when `along_y`), the other
-// coordinate moving by round(slope * t) at step t. Every block lies on exactly one line.
+// A family of parallel lines over the cell grid: along x (or y when `along_y`), the other
+// coordinate moving by round(slope * t) at step t. Every cell lies on exactly one line.
 struct Direction {
   bool along_y = false;
   double slope = 0.0;
@@ -31,8 +31,8 @@ bool StreakFinderOptions::IsValid(std::string* error) const {
       !(min_contrast >= 0.0) || !(chroma_weight >= 0.0)) {
     if (error) {
       *error =
-          "streak finder: half-lengths and side offset of at least one block; positive share, "
-          "score, candidates and shading";
+          "streak finder: cells, half-lengths and side offset of at least one; positive share, "
+          "score, candidates (no more than the local bests kept) and shading";
     }
     return false;
   }
@@ -46,13 +46,12 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
   // Cells of cell_blocks x cell_blocks blocks: a line one cell wide holds a ball of 3-6 px.
   const int cb = o.cell_blocks, cell_px = 2 * cb;
   bw_ = bg.width() / cell_px, bh_ = bg.height() / cell_px;
-  const std::size_t blocks = static_cast<std::size_t>(bw_) * bh_;
-  m_.assign(blocks, 0.0f);
-  v_.assign(blocks, 0.0f);
+  const std::size_t cells = static_cast<std::size_t>(bw_) * bh_;
+  m_.assign(cells, 0.0f);
+  v_.assign(cells, 0.0f);
   const auto w = static_cast<float>(o.chroma_weight);
   const auto s = static_cast<float>(o.shade);
-  const Yuv shaded{16.0f + s * (ball.lit.y - 16.0f), 128.0f + s * (ball.lit.u - 128.0f),
-                   128.0f + s * (ball.lit.v - 128.0f)};
+  const Yuv shaded = ball.Shaded(s);
   const auto min_e = static_cast<float>(o.min_contrast * o.min_contrast);
   const auto clip = static_cast<float>(o.max_share);
   for (int by = 0; by < bh_ * cb; ++by) {
@@ -70,15 +69,15 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
       v_[k] += sy * sy * cy * cy + w * w * sc * sc * (cu * cu + cv * cv);
     }
   }
-  best_.assign(blocks, 0.0f);
-  best_dir_.assign(blocks, -1);
-  best_half_.assign(blocks, 0);
-  pm_.resize(blocks);
-  pv_.resize(blocks);
+  best_.assign(cells, 0.0f);
+  best_dir_.assign(cells, -1);
+  best_half_.assign(cells, 0);
+  pm_.resize(cells);
+  pv_.resize(cells);
   for (int di = 0; di < static_cast<int>(std::size(kDirections)); ++di) {
     const Direction& d = kDirections[di];
     // (t, u): t along the line, u across. The prefix sums are stored t-major (pm_[t * nu + u]);
-    // a block's index in the image is image_index(t, u).
+    // a cell's index in the grid is image_index(t, u).
     const int nt = d.along_y ? bh_ : bw_, nu = d.along_y ? bw_ : bh_;
     const auto image_index = [&](int t, int u) {
       return d.along_y ? static_cast<std::size_t>(t) * bw_ + u
@@ -108,8 +107,8 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
     for (const int h : o.half_cells) {
       for (int t = h; t + h < nt; ++t) {
         // The segment of the line through (t, u) from t - h to t + h: its end at (t + h,
-        // u + du1), the block before its start at (t - h - 1, u + du0) (none before the grid);
-        // it stays in the grid when its first and last blocks do (the steps are monotonic).
+        // u + du1), the cell before its start at (t - h - 1, u + du0) (none before the grid);
+        // it stays in the grid when its first and last cells do (the steps are monotonic).
         const int du1 = step(t + h) - step(t), du0 = step(t - h - 1) - step(t);
         const int dus = step(t - h) - step(t);
         const int lo = std::max(0, -std::min(du1, dus)), hi = std::min(nu, nu - std::max(du1, dus));
@@ -154,9 +153,9 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
     }
   }
   const auto min_score2 = static_cast<float>(o.min_score * o.min_score);
-  // The best segments, each apart from those taken by its own and their half-lengths.
+  // The cells' best segments, best first.
   std::vector<std::size_t> order;
-  for (std::size_t k = 0; k < blocks; ++k) {
+  for (std::size_t k = 0; k < cells; ++k) {
     if (best_[k] >= min_score2) order.push_back(k);
   }
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {

@@ -70,8 +70,8 @@ class StreakFinder {
 
  private:
   int bw_ = 0, bh_ = 0;
-  std::vector<float> m_, v_;    // per block: clipped matched difference, its noise variance
-  std::vector<float> pm_, pv_;  // per block: prefix sums along the current direction's lines
+  std::vector<float> m_, v_;            // per cell: clipped matched difference, its noise variance
+  std::vector<float> pm_, pv_;          // per cell: prefix sums along the current direction's lines
   std::vector<float> line_m_, line_v_;  // one step t: each line's segment sums...
   std::vector<float> score_;            // ...and score
   std::vector<int> step_;               // the current direction's step at t - 1, t = 0..

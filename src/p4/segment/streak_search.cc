@@ -107,9 +107,8 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
   e_.assign(m_.size(), 0.0f);
   const float cw = static_cast<float>(std::sqrt(o.chroma_weight));
   const auto s = static_cast<float>(o.shade);
-  const float ball_y = 16.0f + s * (ball.lit.y - 16.0f),
-              ball_u = 128.0f + s * (ball.lit.u - 128.0f),
-              ball_v = 128.0f + s * (ball.lit.v - 128.0f);
+  const Yuv shaded = ball.Shaded(s);
+  const float ball_y = shaded.y, ball_u = shaded.u, ball_v = shaded.v;
   const auto min_e = static_cast<float>(o.min_contrast * o.min_contrast);
   for (int y = y0_; y < y1; ++y) {
     for (int x = x0_; x < x1; ++x) {

@@ -131,19 +131,18 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
 }
 
 void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
-  const Camera& camera = rig_.cameras[c];
-  const double period = frame_period_s_[c];
   // The ball's size over the table's middle, a little above it.
-  const double diameter = ExpectedDiameterPx(camera, Eigen::Vector3d(0.0, 0.0, 0.2));
-  if (!(period > 0.0) || !(diameter > 0.0)) return;
+  const double diameter = ExpectedDiameterPx(rig_.cameras[c], Eigen::Vector3d(0.0, 0.0, 0.2));
+  if (!(diameter > 0.0)) return;
   std::vector<segment::StreakCandidate> found;
   streak_finders_[c].Find(image, backgrounds_[c], options_.ball_colour, options_.streak_finder,
                           &found);
   for (const segment::StreakCandidate& s : found) {
     // Shorter than two diameters: no faint streak (the regions find such a ball).
     if (s.length_px < 2.0 * diameter) continue;
+    // The candidate's middle is a cell's centre: the streak's lies within a cell of it.
     segment::StreakSearchOptions o = options_.streak;
-    o.search_px = std::min(o.search_px, 4.0);
+    o.search_px = std::min(o.search_px, 2.0 * options_.streak_finder.cell_blocks);
     const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, s.cx,
                                               s.cy, std::cos(s.angle), std::sin(s.angle),
                                               1.5 * s.length_px, diameter, o);

@@ -213,8 +213,9 @@ class FrameSetTracker {
                                       const Eigen::Vector3d& predicted,
                                       const Eigen::Vector3d& velocity,
                                       const Eigen::Matrix3d& covariance);
-  // With no track: the streaks anywhere in camera c's picture (StreakFinder), each measured by
-  // the streak search; their diameters from their shares about the ball's size over the table.
+  // The streaks anywhere in camera c's picture (StreakFinder; with no track, or nothing where
+  // predicted), each measured by the streak search; their diameters from their shares about
+  // the ball's size over the table.
   void StreakViews(int c, const ImageView& image, std::vector<Detection>* out);
   // Moves each view to the set's time t by its own image motion: the velocity from the nearest
   // view of the same camera's last image (Process). Remembers this set's views for the next.

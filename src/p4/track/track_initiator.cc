@@ -33,8 +33,7 @@ double Sigma(const Measurement& m) { return std::sqrt(std::max(0.0, m.covariance
 
 // RMS distance of the points from the best flight through them: p0 + v t + a t^2 / 2 with a
 // gravity and the drag at the mean velocity (first fitted without drag), by least squares.
-double FlightMisfit(const std::vector<TrackletPoint>& points, double gravity,
-                    double drag_per_mass) {
+double FlightMisfit(std::span<const TrackletPoint> points, double gravity, double drag_per_mass) {
   const auto n = static_cast<Eigen::Index>(points.size());
   Eigen::MatrixXd a(n, 2);
   Eigen::MatrixXd b(n, 3);
@@ -94,8 +93,8 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   if (!long_enough) return false;
   // One flight through the newest confirm_points: a stray that joined a still spot, or a hand's
   // turn, fits none (older points may lie before a bounce).
-  const std::vector<TrackletPoint> newest(points.end() - std::min(n, options_.confirm_points),
-                                          points.end());
+  const auto newest =
+      std::span<const TrackletPoint>(points).last(std::min(n, options_.confirm_points));
   double sigma = 0.0;
   for (const TrackletPoint& p : newest) sigma = std::max(sigma, Sigma(p.measurement));
   if (FlightMisfit(newest, options_.gravity, options_.drag_per_mass) >
