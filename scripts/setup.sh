@@ -3,7 +3,7 @@
 # (three.js; playwright-core for the browser tests). Idempotent: what is installed is left alone,
 # so a second run takes seconds.
 #   bash scripts/setup.sh            # build + run (the web UI included)
-#   bash scripts/setup.sh --tests    # and Chromium for the browser tests
+#   bash scripts/setup.sh --tests    # and Chromium for the browser tests, clang for the fuzzers
 set -euo pipefail
 cd "$(dirname "$0")/.."
 with_tests=0
@@ -14,13 +14,13 @@ packages=(
   libeigen3-dev libceres-dev
   libopencv-dev libopencv-contrib-dev
   libavformat-dev libavcodec-dev libavdevice-dev libavutil-dev libswscale-dev ffmpeg
-  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcpp-httplib-dev
+  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libcpp-httplib-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   rtsp-server-perl  # a real RTSP server for the network-camera test
 )
 # Node.js and npm for the web UI's three.js: Debian's, unless the machine has a Node.js already.
 if ! command -v node > /dev/null || ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
-if [ "$with_tests" -eq 1 ]; then packages+=(chromium); fi
+if [ "$with_tests" -eq 1 ]; then packages+=(chromium clang); fi
 
 missing=()
 for p in "${packages[@]}"; do

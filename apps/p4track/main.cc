@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "p4/core/error.h"
+#include "p4/io/video_reader.h"
 
 namespace {
 
@@ -33,6 +34,7 @@ int Run(int argc, char** argv) {
   }
   spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
   spdlog::set_pattern("%^[%l]%$ %v");
+  p4::ShowFfmpegMessages(verbose);
   try {
     for (const auto& [name, run] : commands) {
       if (app.got_subcommand(name)) return run();

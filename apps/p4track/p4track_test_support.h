@@ -33,6 +33,26 @@ inline int P4track(const std::string& args, std::string* output = nullptr) {
   return WEXITSTATUS(status);
 }
 
+// Starts `p4track args` in the background (its output to `log`); returns its process id.
+inline pid_t StartP4track(const std::string& args, const std::filesystem::path& log) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const std::string command =
+        "exec " + std::string(P4TRACK_EXE) + " " + args + " > " + log.string() + " 2>&1";
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// Lines in a file (0 when it is not there).
+inline int CountLines(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
 // `p4track eval` of a run against a simulation: its JSON report (a failed eval fails the test
 // and its message does not parse).
 inline nlohmann::json EvalReport(const std::filesystem::path& sim,

@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "p4/core/error.h"
 #include "p4/io/calib_files.h"
 #include "p4/io/color_class_file.h"
+#include "p4/io/event_files.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/video_reader.h"
 #include "p4/pipeline/ball_candidates.h"
@@ -19,6 +22,9 @@
 #include "web_ui.h"
 
 namespace p4::app {
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(WebFlags, bind, port, web_dir)
+
 namespace {
 
 struct TrackArgs {
@@ -37,7 +43,54 @@ struct TrackArgs {
   bool ui = false, realtime = false, loop = false;
   std::string layout;
   WebFlags web;
+  std::string resume;  // a run folder to continue (its options from its run.json)
 };
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(TrackArgs, rig, out, classes, ball, filter, sources,
+                                                no_roi, no_single_camera, no_smoothing, no_confirm,
+                                                detector, streaks, stride, threads, candidates,
+                                                epipolar_px, players, first_server, best_of,
+                                                no_referee, no_sync, rolling_shutter, max_offset,
+                                                ui, realtime, loop, layout, web)
+
+// DIR/run.json: the run's options (paths made absolute, so that --resume works from anywhere) and
+// whether it finished. Written when a run starts and when it ends (atomically).
+void WriteRunJson(TrackArgs a, bool finished) {
+  const auto absolute = [](std::string* path) {
+    if (!path->empty() && !VideoReader::IsLive(*path)) {
+      *path = std::filesystem::absolute(*path).lexically_normal().string();
+    }
+  };
+  absolute(&a.rig);
+  absolute(&a.classes);
+  absolute(&a.layout);
+  for (auto& source : a.sources) absolute(&source);
+  const std::string out = a.out;
+  absolute(&a.out);
+  WriteJson((std::filesystem::path(out) / "run.json").string(),
+            {{"command", "track"}, {"options", a}, {"finished", finished}});
+}
+
+// The options of the run in `dir` (its run.json), to make it again and continue it.
+TrackArgs ResumedArgs(const std::string& dir, bool* finished) {
+  const std::string path = (std::filesystem::path(dir) / "run.json").string();
+  if (!std::filesystem::exists(path)) {
+    throw Error(path +
+                ": not found: --resume needs a folder that `p4track track` began (it saves "
+                "its options there)");
+  }
+  nlohmann::json j;
+  try {
+    std::ifstream in(path);
+    j = nlohmann::json::parse(in);
+    TrackArgs a = j.at("options").get<TrackArgs>();
+    *finished = j.value("finished", false);
+    a.out = dir;
+    return a;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not a run's options: " + e.what());
+  }
+}
 
 // The colour classes of a named ball (orange for "auto", the hint when nothing can be learnt).
 segment::ColorClassSet NamedClasses(const std::string& ball) {
@@ -88,12 +141,43 @@ Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
   return found.rig;
 }
 
-int Run(const TrackArgs& a) {
+int Run(TrackArgs a) {
+  const bool resume = !a.resume.empty();
+  if (resume) {
+    bool finished = false;
+    a = ResumedArgs(a.resume, &finished);
+    if (finished) {
+      spdlog::info("{}: the run finished; nothing to resume", a.out);
+      return 0;
+    }
+    for (const auto& s : a.sources) {
+      if (VideoReader::IsLive(s)) {
+        throw Error(a.out + ": the run read " + s +
+                    ", a live source: only runs over files can "
+                    "be resumed (a live picture cannot be made again)");
+      }
+    }
+    if (a.loop)
+      throw Error(a.out + ": the run played its files in a loop: it has no end to resume");
+    a.realtime = a.ui = false;
+    spdlog::info(
+        "resuming {}: the run is made again from its start with its own options (run.json); "
+        "what its files hold is checked and kept, the rest appended",
+        a.out);
+  } else if (a.rig.empty() || a.out.empty() || a.sources.empty()) {
+    throw Error("track: --rig, --out and one source per camera are needed (or --resume DIR)");
+  }
   for (const auto& s : a.sources) {
     if (!VideoReader::IsLive(s) && !std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
   if (!a.layout.empty() && !a.ui)
     throw Error("--layout " + a.layout + ": shown by the live view only (add --ui)");
+  if (!resume) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.out, ec);
+    if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
+    WriteRunJson(a, false);
+  }
   const Rig rig = SyncIfNeeded(a, ReadRig(a.rig));
   bool learn = a.classes.empty() && a.ball == "auto";
   segment::ColorClassSet classes =
@@ -173,6 +257,7 @@ int Run(const TrackArgs& a) {
   extras.realtime = a.realtime;
   extras.smooth_one_camera = !a.no_smoothing;
   extras.loop = a.loop;
+  extras.resume = resume;
   // Ctrl-C ends the run as the sources' end would: held rows written, the score final.
   extras.stop = &CatchInterrupts();
   if (a.ui) {
@@ -184,6 +269,13 @@ int Run(const TrackArgs& a) {
     StartAndAnnounce(web.get(), a.web, "live view");
     extras.live = hub.get();
   }
+  extras.on_gap = [](const std::string& source, const VideoGap& g) {
+    const auto at = [](const std::optional<TimeNs>& t, const char* none) {
+      return t ? fmt::format("{:.3f} s", ToSeconds(*t)) : std::string(none);
+    };
+    spdlog::warn("{}: damaged data skipped: {} frame(s) lost between {} and {} of the recording",
+                 source, g.frames_lost, at(g.after, "its start"), at(g.before, "its end"));
+  };
   spdlog::info("tracking {} source(s) with {} ({} camera(s)) into {}", a.sources.size(), a.rig,
                rig.size(), a.out);
   const TrackRunSummary summary = RunTracking(
@@ -191,7 +283,18 @@ int Run(const TrackArgs& a) {
       [](int64_t n) { spdlog::info("tracking: {} frame sets", n); }, extras);
   for (const auto& e : summary.sources_ended_with_error) spdlog::warn("source ended: {}", e);
   spdlog::info("{}", summary.Report());
-  if (summary.stopped) spdlog::info("stopped by Ctrl-C; the run's files are complete");
+  if (resume) {
+    spdlog::info("resumed: {} rows and events were already in {} and are kept", summary.rows_found,
+                 a.out);
+  }
+  if (summary.stopped) {
+    spdlog::info(
+        "stopped by Ctrl-C; the run's files are complete (continue with: p4track track "
+        "--resume {})",
+        a.out);
+  } else {
+    WriteRunJson(a, true);
+  }
   if (web && !summary.stopped) {
     spdlog::info(
         "the sources have ended; the live view stays at {} until Ctrl-C (replay the run "
@@ -208,14 +311,22 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   auto args = std::make_shared<TrackArgs>();
   CLI::App* cmd =
       app.add_subcommand("track", "Track the ball in 3D from video files, cameras or streams");
-  cmd->add_option("--rig", args->rig, "Rig file (rig.yaml) of the cameras, in the sources' order")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--out", args->out,
-                  "Output folder (trajectory.csv, detections.csv, events.jsonl, score.json)")
-      ->required();
-  cmd->add_option("sources", args->sources, "One per camera: video file, /dev/videoN, rtsp://...")
-      ->required();
+  auto* rig = cmd->add_option("--rig", args->rig,
+                              "Rig file (rig.yaml) of the cameras, in the sources' order")
+                  ->check(CLI::ExistingFile);
+  auto* out = cmd->add_option("--out", args->out,
+                              "Output folder (trajectory.csv, detections.csv, events.jsonl, "
+                              "score.json, run.json)");
+  auto* sources = cmd->add_option("sources", args->sources,
+                                  "One per camera: video file, /dev/videoN, rtsp://...");
+  cmd->add_option("--resume", args->resume,
+                  "Continue the run in this folder after a crash or kill, with its own options "
+                  "(run.json): it is made again from its start, the rows its files hold are "
+                  "checked and kept, the rest appended, the score carried on (files only)")
+      ->check(CLI::ExistingDirectory)
+      ->excludes(rig)
+      ->excludes(out)
+      ->excludes(sources);
   cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
       ->check(CLI::ExistingFile);
   cmd->add_option("--ball", args->ball,

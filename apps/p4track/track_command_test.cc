@@ -3,6 +3,7 @@
 // user meets with bad input.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -115,6 +116,82 @@ TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
   std::getline(detections, line);
   EXPECT_TRUE(line.find(",cam0,") != std::string::npos || line.find(",cam1,") != std::string::npos)
       << line;
+}
+
+// 20 KB of bad bytes in the middle of one camera's recording: the frames the decoder cannot make
+// are skipped and reported (once, with where and how many), the rest are tracked to the end.
+TEST_F(TrackCommand, ADamagedRecordingLosesOnlyTheDamagedFrames) {
+  const fs::path damaged = *dir_ / "damaged_cam0.mp4";
+  fs::copy_file(sim_ / "cam0.mp4", damaged, fs::copy_options::overwrite_existing);
+  {
+    std::fstream f(damaged, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(fs::file_size(damaged) * 6 / 10));
+    uint32_t x = 2463534242u;
+    for (int i = 0; i < 20'000; ++i) {
+      x ^= x << 13, x ^= x >> 17, x ^= x << 5;  // xorshift32
+      f.put(static_cast<char>(x & 0xff));
+    }
+  }
+  const fs::path run = *dir_ / "run_damaged";
+  std::string out;
+  ASSERT_EQ(P4track("track --rig " + (run_ / "rig_synced.yaml").string() + " --classes " +
+                        (run_ / "ball_classes.yaml").string() + " --out " + run.string() + " " +
+                        damaged.string() + " " + (sim_ / "cam1.mp4").string(),
+                    &out),
+            0)
+      << out;
+  std::size_t at = out.find("damaged data skipped");
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_EQ(out.find("damaged data skipped", at + 1), std::string::npos) << "one gap, said once";
+  EXPECT_NE(out.find("damaged frame(s) skipped in 1 stretch"), std::string::npos) << out;
+  const auto report = EvalReport(sim_, run);
+  const auto clean = EvalReport(sim_, run_);
+  std::printf("damaged: %s\n", report.dump().c_str());
+  EXPECT_GE(report["recall"].get<double>(), clean["recall"].get<double>() - 0.03);
+  EXPECT_LE(report["position_rmse_mm"].get<double>(), 5.0);
+  EXPECT_LE(report["false_positive_rate"].get<double>(), 0.005);
+  EXPECT_EQ(report["final_score_right"], clean["final_score_right"]);
+}
+
+// kill -9 in the middle of a run, then `track --resume`: the folder reads back as it was left (no
+// torn row, score.json whole), and the resumed run's files are those of the run that was never
+// stopped, byte for byte (the same rows, events and score). The killed run is paced at the
+// video's own rate (--realtime) so that it is surely under way when killed; the test waits on
+// its rows, not on a clock.
+TEST_F(TrackCommand, AKilledRunResumesToTheUninterruptedResult) {
+  const fs::path run = *dir_ / "run_killed";
+  const fs::path log = *dir_ / "killed.log";
+  const pid_t pid = p4::testing::StartP4track(
+      "track --realtime --rig " + (sim_ / "rig.yaml").string() + " --out " + run.string() + " " +
+          (sim_ / "cam0.mp4").string() + " " + (sim_ / "cam1.mp4").string(),
+      log);
+  ASSERT_GT(pid, 0);
+  int status = 0;
+  bool exited = false;
+  while (p4::testing::CountLines(run / "trajectory.csv") < 200) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    ::usleep(5'000);
+  }
+  ASSERT_FALSE(exited) << "the run ended before it could be killed: " << Slurp(log);
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const int rows_left = p4::testing::CountLines(run / "trajectory.csv");
+  EXPECT_LT(rows_left, p4::testing::CountLines(run_ / "trajectory.csv"));
+  // What the kill left reads back (eval reads trajectory.csv and events.jsonl).
+  EvalReport(sim_, run);
+  std::string out;
+  ASSERT_EQ(P4track("track --resume " + run.string(), &out), 0) << out;
+  EXPECT_NE(out.find("resumed: "), std::string::npos) << out;
+  for (const char* file : {"trajectory.csv", "detections.csv", "events.jsonl", "score.json"}) {
+    EXPECT_EQ(Slurp(run / file), Slurp(run_ / file)) << file << " differs after the resume";
+  }
+  // A finished run has nothing to resume.
+  ASSERT_EQ(P4track("track --resume " + run.string(), &out), 0) << out;
+  EXPECT_NE(out.find("nothing to resume"), std::string::npos) << out;
 }
 
 // The game layer end to end: events from the track, the referee's points and score.

@@ -9,8 +9,8 @@
 
 #include "p4/core/error.h"
 #include "p4/io/csv.h"
-#include "p4/io/file_storage.h"
 #include "p4/io/video_reader.h"
+#include "p4/io/yaml_file.h"
 
 namespace p4 {
 namespace {
@@ -30,31 +30,37 @@ GrayFrame ReadImage(const std::filesystem::path& p) {
 
 }  // namespace
 
-calib::MarkerLayout ReadMarkerLayout(const std::string& path) {
-  cv::FileStorage fs;
-  const cv::FileNode list = OpenList(path, "markers", &fs);
+namespace {
+calib::MarkerLayout ParseMarkerLayout(const std::string& path) {
+  const YAML::Node root = LoadYamlMap(path);
+  const YAML::Node list = YamlList(path, root, "markers");
   calib::MarkerLayout layout;
-  if (!fs["dictionary"].empty()) layout.dictionary = static_cast<std::string>(fs["dictionary"]);
+  if (root["dictionary"].IsDefined()) {
+    if (!root["dictionary"].IsScalar()) throw Error(path + ": 'dictionary' must be a name");
+    layout.dictionary = root["dictionary"].Scalar();
+  }
   int index = 0;
-  for (const cv::FileNode& node : list) {
+  for (const YAML::Node& node : list) {
     const std::string where = fmt::format("{}: marker {}", path, index++);
-    if (node["id"].empty() || !node["id"].isInt()) throw Error(where + ": missing integer 'id'");
-    const int id = static_cast<int>(node["id"]);
+    int id = 0;
+    if (!node.IsMap() || !YamlInt(node["id"], &id)) throw Error(where + ": missing integer 'id'");
+    const YAML::Node corners = node["corners"];
+    if (!corners.IsDefined())
+      throw Error(where + " (id " + std::to_string(id) + "): missing 'corners'");
+    // An opencv-matrix ({rows, cols, data}) or a list of points (or of numbers).
+    const YAML::Node rows = corners.IsMap() ? corners["data"] : corners;
+    if (!rows.IsSequence()) throw Error(where + ": 'corners' must be a matrix or a list");
     std::vector<double> values;
-    const cv::FileNode corners = node["corners"];
-    if (corners.empty()) throw Error(where + " (id " + std::to_string(id) + "): missing 'corners'");
-    if (corners.isMap()) {
-      cv::Mat m;
-      corners >> m;
-      m.convertTo(m, CV_64F);
-      values.assign(m.begin<double>(), m.end<double>());
-    } else {
-      for (const cv::FileNode& row : corners) {
-        if (row.isSeq()) {
-          for (const cv::FileNode& v : row) values.push_back(static_cast<double>(v));
-        } else {
-          values.push_back(static_cast<double>(row));
-        }
+    const auto number = [&](const YAML::Node& v) {
+      double x = 0.0;
+      if (!YamlNumber(v, &x)) throw Error(where + ": 'corners' holds a value that is not a number");
+      values.push_back(x);
+    };
+    for (const YAML::Node& row : rows) {
+      if (row.IsSequence()) {
+        for (const YAML::Node& v : row) number(v);
+      } else {
+        number(row);
       }
     }
     if (values.size() != 12) {
@@ -70,6 +76,11 @@ calib::MarkerLayout ReadMarkerLayout(const std::string& path) {
   }
   if (layout.corners.empty()) throw Error(path + ": the 'markers' list is empty");
   return layout;
+}
+}  // namespace
+
+calib::MarkerLayout ReadMarkerLayout(const std::string& path) {
+  return ReadYamlFile(path, [&] { return ParseMarkerLayout(path); });
 }
 
 std::vector<calib::PointMatch> ReadPointMatches(const std::string& path) {

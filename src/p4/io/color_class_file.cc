@@ -6,32 +6,33 @@
 #include <opencv2/core.hpp>
 
 #include "p4/core/error.h"
-#include "p4/io/file_storage.h"
+#include "p4/io/yaml_file.h"
 
 namespace p4 {
 
-segment::ColorClassSet ReadColorClasses(const std::string& path) {
-  cv::FileStorage fs;
-  const cv::FileNode list = OpenList(path, "classes", &fs);
+namespace {
+segment::ColorClassSet ParseColorClasses(const std::string& path) {
+  const YAML::Node root = LoadYamlMap(path);
+  const YAML::Node list = YamlList(path, root, "classes");
   segment::ColorClassSet set;
   int index = 0;
   for (const auto& node : list) {
     const std::string where = fmt::format("{}: classes[{}]", path, index++);
-    if (!node.isMap() || node["name"].empty() || !node["name"].isString()) {
+    if (!node.IsMap() || !node["name"].IsDefined() || !node["name"].IsScalar()) {
       throw Error(where + ": missing 'name'");
     }
     segment::ColorClass c;
-    c.name = static_cast<std::string>(node["name"]);
+    c.name = node["name"].Scalar();
     for (const auto& [key, range] :
          {std::pair{"y", &c.y}, std::pair{"u", &c.u}, std::pair{"v", &c.v}}) {
-      const cv::FileNode bounds = node[key];
-      if (bounds.empty() || !bounds.isSeq() || bounds.size() != 2) {
+      const YAML::Node bounds = node[key];
+      if (!bounds.IsDefined() || !bounds.IsSequence() || bounds.size() != 2) {
         throw Error(fmt::format("{} '{}': '{}' must be [low, high]", where, c.name, key));
       }
       for (int k = 0; k < 2; ++k) {
-        if (!bounds[k].isInt())
+        int value = 0;
+        if (!YamlInt(bounds[k], &value))
           throw Error(fmt::format("{} '{}': {}: not an integer", where, c.name, key));
-        const int value = static_cast<int>(bounds[k]);
         if (value < 0 || value > 255) {
           throw Error(fmt::format("{} '{}': {}: {} is outside 0-255", where, c.name, key, value));
         }
@@ -44,6 +45,11 @@ segment::ColorClassSet ReadColorClasses(const std::string& path) {
   if (!set.IsValid(&why)) throw Error(path + ": " + why);
   if (set.MaskOf("ball") == 0) throw Error(path + ": no class named ball* (the ball's classes)");
   return set;
+}
+}  // namespace
+
+segment::ColorClassSet ReadColorClasses(const std::string& path) {
+  return ReadYamlFile(path, [&] { return ParseColorClasses(path); });
 }
 
 void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path) {

@@ -9,7 +9,8 @@ namespace p4 {
 
 // The rows after the header line, split at commas (blank lines skipped), each with as many
 // fields as the header. Throws p4::Error when the file cannot be opened, its first line is not
-// `header`, or a row has another number of fields (naming the line).
+// `header`, or a row has another number of fields (naming the line) — but a last line with no
+// end and too few fields, a row torn by a crash, is skipped.
 std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std::string& header);
 
 // The cell as a number; throws p4::Error naming the file, the line (row + 2) and the text.

@@ -46,6 +46,7 @@ std::vector<game::Event> ReadEventsJsonl(const std::string& path) {
     try {
       j = nlohmann::json::parse(line);
     } catch (const nlohmann::json::exception&) {
+      if (in.eof()) break;  // a last line with no end: torn by a crash (io/line_appender.h)
       throw Error(where + ": not a JSON object");
     }
     try {

@@ -16,7 +16,8 @@ namespace p4 {
 std::string EventToJsonLine(const game::Event& event);
 void WriteEventsJsonl(const std::string& path, const std::vector<game::Event>& events);
 
-// Reads events.jsonl (blank lines skipped). Throws p4::Error naming the file, line and field.
+// Reads events.jsonl (blank lines skipped; a last line with no end that does not parse, torn by a
+// crash, too). Throws p4::Error naming the file, line and field.
 std::vector<game::Event> ReadEventsJsonl(const std::string& path);
 
 // players: the names of A and B.

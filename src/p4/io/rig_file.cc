@@ -8,49 +8,52 @@
 #include <vector>
 
 #include "p4/core/error.h"
-#include "p4/io/file_storage.h"
+#include "p4/io/yaml_file.h"
 
 namespace p4 {
 namespace {
 
 // Flattens a matrix node into numbers; accepts an opencv-matrix map or a (nested) list.
-bool ReadNumbers(const cv::FileNode& node, std::vector<double>* values, int* rows, int* cols,
+bool ReadNumbers(const YAML::Node& node, std::vector<double>* values, int* rows, int* cols,
                  std::string* why) {
   values->clear();
-  if (node.isMap()) {
-    const cv::FileNode data = node["data"];
-    if (node["rows"].empty() || node["cols"].empty() || data.empty()) {
+  const auto number = [&](const YAML::Node& item) {
+    double v = 0.0;
+    if (!YamlNumber(item, &v)) return false;
+    values->push_back(v);
+    return true;
+  };
+  if (node.IsMap()) {
+    const YAML::Node data = node["data"];
+    if (!YamlInt(node["rows"], rows) || !YamlInt(node["cols"], cols) || !data.IsSequence()) {
       *why = "expected a matrix with rows, cols and data";
       return false;
     }
-    *rows = static_cast<int>(node["rows"]);
-    *cols = static_cast<int>(node["cols"]);
     for (const auto& item : data) {
-      if (!item.isReal() && !item.isInt()) {
+      if (!number(item)) {
         *why = "data holds a value that is not a number";
         return false;
       }
-      values->push_back(static_cast<double>(item));
     }
-    if (static_cast<int>(values->size()) != *rows * *cols) {
+    if (*rows <= 0 || *cols <= 0 ||
+        static_cast<int64_t>(values->size()) != static_cast<int64_t>(*rows) * *cols) {
       *why = "data has " + std::to_string(values->size()) + " numbers for a " +
              std::to_string(*rows) + "x" + std::to_string(*cols) + " matrix";
       return false;
     }
     return true;
   }
-  if (node.isSeq()) {
+  if (node.IsSequence()) {
     *rows = 0;
     *cols = -1;
     for (const auto& row : node) {
-      if (row.isSeq()) {
+      if (row.IsSequence()) {
         const int before = static_cast<int>(values->size());
         for (const auto& item : row) {
-          if (!item.isReal() && !item.isInt()) {
+          if (!number(item)) {
             *why = "holds a value that is not a number";
             return false;
           }
-          values->push_back(static_cast<double>(item));
         }
         const int n = static_cast<int>(values->size()) - before;
         if (*cols >= 0 && n != *cols) {
@@ -59,9 +62,7 @@ bool ReadNumbers(const cv::FileNode& node, std::vector<double>* values, int* row
         }
         *cols = n;
         ++*rows;
-      } else if (row.isReal() || row.isInt()) {
-        values->push_back(static_cast<double>(row));
-      } else {
+      } else if (!number(row)) {
         *why = "holds a value that is not a number";
         return false;
       }
@@ -76,10 +77,10 @@ bool ReadNumbers(const cv::FileNode& node, std::vector<double>* values, int* row
   return false;
 }
 
-std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& key, int want_rows,
+std::vector<double> ReadMatrix(const YAML::Node& camera, const std::string& key, int want_rows,
                                int want_cols, bool either_orientation, const std::string& where) {
-  const cv::FileNode node = camera[key];
-  if (node.empty()) throw Error(where + ": missing '" + key + "'");
+  const YAML::Node node = camera[key];
+  if (!node.IsDefined() || node.IsNull()) throw Error(where + ": missing '" + key + "'");
   std::vector<double> values;
   int rows = 0, cols = 0;
   std::string why;
@@ -100,22 +101,22 @@ std::vector<double> ReadMatrix(const cv::FileNode& camera, const std::string& ke
   return values;
 }
 
-int ReadPositiveInt(const cv::FileNode& camera, const std::string& key, const std::string& where) {
-  const cv::FileNode node = camera[key];
-  if (node.empty()) throw Error(where + ": missing '" + key + "'");
-  if (!node.isInt()) throw Error(where + ": " + key + ": expected an integer");
-  const int value = static_cast<int>(node);
+int ReadPositiveInt(const YAML::Node& camera, const std::string& key, const std::string& where) {
+  const YAML::Node node = camera[key];
+  if (!node.IsDefined()) throw Error(where + ": missing '" + key + "'");
+  int value = 0;
+  if (!YamlInt(node, &value)) throw Error(where + ": " + key + ": expected an integer");
   if (value <= 0)
     throw Error(where + ": " + key + ": must be positive (got " + std::to_string(value) + ")");
   return value;
 }
 
-double ReadOptionalNumber(const cv::FileNode& camera, const std::string& key, double fallback,
+double ReadOptionalNumber(const YAML::Node& camera, const std::string& key, double fallback,
                           const std::string& where) {
-  const cv::FileNode node = camera[key];
-  if (node.empty()) return fallback;
-  if (!node.isReal() && !node.isInt()) throw Error(where + ": " + key + ": expected a number");
-  const auto value = static_cast<double>(node);
+  const YAML::Node node = camera[key];
+  if (!node.IsDefined()) return fallback;
+  double value = 0.0;
+  if (!YamlNumber(node, &value)) throw Error(where + ": " + key + ": expected a number");
   if (!std::isfinite(value)) throw Error(where + ": " + key + ": not finite");
   return value;
 }
@@ -130,17 +131,20 @@ cv::Mat ToMat(const double* data, int rows, int cols) {
 
 }  // namespace
 
-Rig ReadRig(const std::string& path) {
-  cv::FileStorage fs;
-  const cv::FileNode cameras = OpenList(path, "cameras", &fs);
+namespace {
+Rig ParseRig(const std::string& path) {
+  const YAML::Node root = LoadYamlMap(path);
+  const YAML::Node cameras = YamlList(path, root, "cameras");
   Rig rig;
   int index = 0;
   for (const auto& node : cameras) {
     std::string where = path + ": cameras[" + std::to_string(index) + "]";
-    if (!node.isMap()) throw Error(where + ": expected a map of camera fields");
+    if (!node.IsMap()) throw Error(where + ": expected a map of camera fields");
     Camera camera;
-    if (node["name"].empty() || !node["name"].isString()) throw Error(where + ": missing 'name'");
-    camera.name = static_cast<std::string>(node["name"]);
+    if (!node["name"].IsDefined() || !node["name"].IsScalar()) {
+      throw Error(where + ": missing 'name'");
+    }
+    camera.name = node["name"].Scalar();
     where += " '" + camera.name + "'";
     camera.width = ReadPositiveInt(node, "image_width", where);
     camera.height = ReadPositiveInt(node, "image_height", where);
@@ -152,7 +156,7 @@ Rig ReadRig(const std::string& path) {
     camera.cx = k[2];
     camera.fy = k[4];
     camera.cy = k[5];
-    if (!node["distortion_coefficients"].empty()) {
+    if (node["distortion_coefficients"].IsDefined()) {
       const auto d = ReadMatrix(node, "distortion_coefficients", 1, 5, true, where);
       std::copy(d.begin(), d.end(), camera.distortion.begin());
     }
@@ -162,7 +166,7 @@ Rig ReadRig(const std::string& path) {
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
     camera.cam_from_world.translation = Eigen::Vector3d(t[0], t[1], t[2]);
     // The clock (optional keys; docs/FORMATS.md): a camera without them is in step.
-    camera.clock.has_offset = !node["time_offset_s"].empty();
+    camera.clock.has_offset = node["time_offset_s"].IsDefined();
     camera.clock.time_offset_s = ReadOptionalNumber(node, "time_offset_s", 0.0, where);
     camera.clock.clock_rate = ReadOptionalNumber(node, "clock_rate", 1.0, where);
     camera.clock.line_time_s = ReadOptionalNumber(node, "line_time_s", 0.0, where);
@@ -174,6 +178,11 @@ Rig ReadRig(const std::string& path) {
   std::string why;
   if (!ValidateRig(rig, &why)) throw Error(path + ": " + why);
   return rig;
+}
+}  // namespace
+
+Rig ReadRig(const std::string& path) {
+  return ReadYamlFile(path, [&] { return ParseRig(path); });
 }
 
 void WriteRig(const Rig& rig, const std::string& path,

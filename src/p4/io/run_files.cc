@@ -11,47 +11,52 @@
 
 namespace p4 {
 
-RunWriter::RunWriter(const std::string& dir, const Rig& rig) : dir_(dir) {
+namespace {
+std::string In(const std::string& dir, const char* name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+}  // namespace
+
+RunWriter::RunWriter(const std::string& dir, const Rig& rig, bool resume)
+    : dir_(dir),
+      trajectory_(In(dir, "trajectory.csv"), resume),
+      detections_(In(dir, "detections.csv"), resume),
+      events_(In(dir, "events.jsonl"), resume) {
   for (const auto& c : rig.cameras) camera_names_.push_back(c.name);
-  const auto open = [&](std::ofstream& out, const std::string& name, const char* header) {
-    const std::string path = (std::filesystem::path(dir) / name).string();
-    out.open(path);
-    if (!out) throw Error(path + ": cannot create the file");
-    out << header << '\n';
-    out.flush();
-  };
-  open(trajectory_, "trajectory.csv", "t,x,y,z,vx,vy,vz,measured,cameras,residual_px");
-  open(detections_, "detections.csv", "t,camera,u,v,diameter_px,area_px,accepted");
-  const std::string events = (std::filesystem::path(dir) / "events.jsonl").string();
-  events_.open(events);
-  if (!events_) throw Error(events + ": cannot create the file");
+  trajectory_.Append("t,x,y,z,vx,vy,vz,measured,cameras,residual_px\n");
+  detections_.Append("t,camera,u,v,diameter_px,area_px,accepted\n");
+}
+
+int64_t RunWriter::rows_found() const {
+  return trajectory_.lines_found() + detections_.lines_found() + events_.lines_found();
 }
 
 void RunWriter::WriteEvent(const game::Event& event) {
-  events_ << EventToJsonLine(event) << '\n';
-  events_.flush();
+  events_.Append(EventToJsonLine(event) + '\n');
 }
 
 void RunWriter::WriteScore(const nlohmann::json& score) {
-  WriteJson((std::filesystem::path(dir_) / "score.json").string(), score);
+  // Resuming: the score of a point already in the files is older than the one there.
+  if (!events_.caught_up()) return;
+  WriteJson(In(dir_, "score.json"), score);
 }
 
 void RunWriter::Write(const track::FrameSetResult& result) {
   const double t = ToSeconds(result.t);
+  std::string lines;
   for (const auto& d : result.detections) {
-    detections_ << fmt::format("{:.6f},{},{:.3f},{:.3f},{:.2f},{},{}\n", t, camera_names_[d.camera],
-                               d.observed.x(), d.observed.y(), d.diameter_px, d.area_px,
-                               d.accepted ? 1 : 0);
+    lines +=
+        fmt::format("{:.6f},{},{:.3f},{:.3f},{:.2f},{},{}\n", t, camera_names_[d.camera],
+                    d.observed.x(), d.observed.y(), d.diameter_px, d.area_px, d.accepted ? 1 : 0);
   }
+  if (!lines.empty()) detections_.Append(lines);
   if (result.state) {
     const auto& s = *result.state;
-    trajectory_ << fmt::format("{:.6f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.4f},{},{},{:.3f}\n", t,
-                               s.position.x(), s.position.y(), s.position.z(), s.velocity.x(),
-                               s.velocity.y(), s.velocity.z(), s.measured ? 1 : 0, s.cameras,
-                               s.residual_px);
+    trajectory_.Append(
+        fmt::format("{:.6f},{:.5f},{:.5f},{:.5f},{:.4f},{:.4f},{:.4f},{},{},{:.3f}\n", t,
+                    s.position.x(), s.position.y(), s.position.z(), s.velocity.x(), s.velocity.y(),
+                    s.velocity.z(), s.measured ? 1 : 0, s.cameras, s.residual_px));
   }
-  trajectory_.flush();
-  detections_.flush();
 }
 
 std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {

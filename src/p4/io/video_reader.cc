@@ -7,10 +7,13 @@ extern "C" {
 #include <libavdevice/avdevice.h>
 #include <libavformat/avformat.h>
 #include <libavutil/dict.h>
+#include <libavutil/log.h>
 #include <libswscale/swscale.h>
 }
 
+#include <cmath>
 #include <mutex>
+#include <utility>
 
 #include "p4/core/error.h"
 #include "p4/io/av_error.h"
@@ -28,6 +31,39 @@ struct VideoReader::Impl {
   int stream = -1;
   VideoInfo info;
   bool draining = false;
+  std::string ended_with;
+  // Damage: skipped since the last good frame, the gaps closed so far.
+  std::optional<TimeNs> last_good;
+  int64_t pending = 0;
+  int consecutive_errors = 0;
+  std::vector<VideoGap> gaps;
+
+  TimeNs FramePts() const {
+    const AVStream* st = format->streams[stream];
+    const int64_t ts =
+        frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : frame->best_effort_timestamp;
+    const int64_t start = st->start_time;
+    return av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), st->time_base,
+                        AVRational{1, 1'000'000'000});
+  }
+  // Closes the open gap, if any, at a good frame's time (none: at the end).
+  void CloseGap(std::optional<TimeNs> t) {
+    if (pending > 0) {
+      VideoGap g;
+      g.after = last_good;
+      g.before = t;
+      g.damaged = pending;
+      g.frames_lost = pending;
+      if (t && info.fps > 0.0) {
+        const double span = ToSeconds(*t - last_good.value_or(0)) * info.fps;
+        const auto by_rate = static_cast<int64_t>(std::llround(span)) - (last_good ? 1 : 0);
+        g.frames_lost = std::max<int64_t>(by_rate, 0);
+      }
+      gaps.push_back(g);
+    }
+    pending = 0;
+    if (t) last_good = t;
+  }
 
   ~Impl() {
     sws_freeContext(sws);
@@ -37,6 +73,8 @@ struct VideoReader::Impl {
     avformat_close_input(&format);
   }
 };
+
+void ShowFfmpegMessages(bool verbose) { av_log_set_level(verbose ? AV_LOG_INFO : AV_LOG_FATAL); }
 
 bool VideoReader::IsLive(const std::string& source) {
   return source.rfind("/dev/video", 0) == 0 || source.find("://") != std::string::npos;
@@ -101,15 +139,26 @@ const VideoInfo& VideoReader::info() const { return impl_->info; }
 
 bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
   Impl& m = *impl_;
+  // A decoder or container that fails this often in a row with nothing good between is not
+  // damaged in a stretch: the stream ends there.
+  constexpr int kMaxConsecutiveErrors = 10'000;
+  const auto end = [&](const std::string& why) {
+    if (m.ended_with.empty() && !why.empty()) m.ended_with = m.source + ": " + why;
+    m.CloseGap(std::nullopt);
+    return false;
+  };
   while (true) {
     int ret = avcodec_receive_frame(m.codec, m.frame);
     if (ret == 0) {
-      const AVRational tb = m.format->streams[m.stream]->time_base;
-      const int64_t ts =
-          m.frame->best_effort_timestamp == AV_NOPTS_VALUE ? 0 : m.frame->best_effort_timestamp;
-      const int64_t start = m.format->streams[m.stream]->start_time;
-      *pts = av_rescale_q(ts - (start == AV_NOPTS_VALUE ? 0 : start), tb,
-                          AVRational{1, 1'000'000'000});
+      // Concealed or missing a reference: the picture is partly made up. Skipped (the frames
+      // around it are good; a made-up patch could look like a ball).
+      if ((m.frame->flags & AV_FRAME_FLAG_CORRUPT) != 0 || m.frame->decode_error_flags != 0) {
+        ++m.pending;
+        continue;
+      }
+      m.consecutive_errors = 0;
+      *pts = m.FramePts();
+      m.CloseGap(*pts);
       const int w = m.frame->width, h = m.frame->height;
       view->width = w;
       view->height = h;
@@ -148,21 +197,38 @@ bool VideoReader::ReadView(ImageView* view, TimeNs* pts) {
         }
       }
     }
-    if (ret == AVERROR_EOF) return false;
-    if (ret != AVERROR(EAGAIN)) throw Error(m.source + ": decoding failed: " + AvError(ret));
-    if (m.draining) return false;
+    if (ret == AVERROR_EOF) return end("");
+    if (ret != AVERROR(EAGAIN)) {
+      // The decoder gave up on a picture: skipped.
+      ++m.pending;
+      if (++m.consecutive_errors >= kMaxConsecutiveErrors)
+        return end("decoding failed: " + AvError(ret));
+      continue;
+    }
+    if (m.draining) return end("");
     ret = av_read_frame(m.format, m.packet);
-    if (ret == AVERROR_EOF) {
+    if (ret < 0) {
+      // Bad bytes in a file: the demuxer may resync on the next packet; anything else (a cut
+      // file, a lost connection) ends the stream as its end would, the decoder drained.
+      const bool damaged =
+          ret == AVERROR_INVALIDDATA && ++m.consecutive_errors < kMaxConsecutiveErrors;
+      if (damaged) {
+        ++m.pending;
+        continue;
+      }
+      if (ret != AVERROR_EOF) m.ended_with = m.source + ": reading stopped: " + AvError(ret);
       m.draining = true;
       avcodec_send_packet(m.codec, nullptr);
       continue;
     }
-    if (ret < 0) throw Error(m.source + ": reading failed: " + AvError(ret));
     if (m.packet->stream_index == m.stream) {
       ret = avcodec_send_packet(m.codec, m.packet);
       av_packet_unref(m.packet);
-      if (ret < 0 && ret != AVERROR(EAGAIN))
-        throw Error(m.source + ": decoding failed: " + AvError(ret));
+      if (ret < 0 && ret != AVERROR(EAGAIN)) {
+        ++m.pending;  // a packet the decoder refuses: its frame is lost
+        if (++m.consecutive_errors >= kMaxConsecutiveErrors)
+          return end("decoding failed: " + AvError(ret));
+      }
     } else {
       av_packet_unref(m.packet);
     }
@@ -208,5 +274,9 @@ bool VideoReader::Read(I420Image* out, TimeNs* pts) {
   }
   return true;
 }
+
+std::vector<VideoGap> VideoReader::TakeGaps() { return std::exchange(impl_->gaps, {}); }
+
+const std::string& VideoReader::ended_with() const { return impl_->ended_with; }
 
 }  // namespace p4

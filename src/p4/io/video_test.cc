@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -88,6 +89,94 @@ TEST(Video, MissingFileIsNamed) {
   odd.width = 63;
   odd.height = 48;
   EXPECT_THROW(VideoWriter("/tmp/p4_odd.mp4", odd), Error);
+}
+
+// Overwrites `count` bytes at `offset` of a file with a fixed pseudo-random pattern.
+void Damage(const std::string& path, std::streamoff offset, int count) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(offset);
+  uint32_t x = 2463534242u;
+  for (int i = 0; i < count; ++i) {
+    x ^= x << 13, x ^= x >> 17, x ^= x << 5;  // xorshift32
+    f.put(static_cast<char>(x & 0xff));
+  }
+}
+
+// A recording with bad bytes in the middle loses the frames the decoder cannot make, no more:
+// reading goes on to the last frame, and the gap says where and how much (issue: a damaged
+// stretch once ended the whole run with "decoding failed").
+TEST(Video, ADamagedStretchIsSkippedAndReported) {
+  const std::string path = (fs::temp_directory_path() / "p4_damaged_test.mp4").string();
+  constexpr int kFrames = 240, kFps = 60;
+  WriteClip(path, 320, 240, kFps, kFrames);
+  const auto size = static_cast<std::streamoff>(fs::file_size(path));
+  Damage(path, size / 2, 2000);
+  VideoReader reader(path);
+  ImageView view;
+  TimeNs pts = 0, last = -1;
+  int read = 0;
+  std::vector<VideoGap> gaps;
+  while (reader.ReadView(&view, &pts)) {
+    EXPECT_GT(pts, last);
+    last = pts;
+    ++read;
+    for (const VideoGap& g : reader.TakeGaps()) gaps.push_back(g);
+  }
+  for (const VideoGap& g : reader.TakeGaps()) gaps.push_back(g);
+  EXPECT_EQ(reader.ended_with(), "");
+  // The last frame is read, and every frame is either read or counted lost.
+  EXPECT_NEAR(ToSeconds(last), (kFrames - 1.0) / kFps, 0.5 / kFps);
+  ASSERT_EQ(gaps.size(), 1u);
+  const VideoGap& g = gaps[0];
+  ASSERT_TRUE(g.after.has_value());
+  ASSERT_TRUE(g.before.has_value());
+  EXPECT_GE(g.frames_lost, 1);
+  EXPECT_EQ(read + g.frames_lost, kFrames);
+  EXPECT_EQ(std::llround(ToSeconds(*g.before - *g.after) * kFps), g.frames_lost + 1);
+  // The damage sits in the file's middle: so does the gap (the frames are of similar size).
+  EXPECT_GT(ToSeconds(*g.after), 0.2 * kFrames / kFps);
+  EXPECT_LT(ToSeconds(*g.before), 0.8 * kFrames / kFps);
+  EXPECT_LE(g.frames_lost, kFrames / 4);
+  fs::remove(path);
+}
+
+// A file that ends mid-packet (a recording cut off) gives its whole frames and ends cleanly; bytes
+// that are no video at all cannot be opened, and the error names the file.
+TEST(Video, ACutFileEndsAndGarbageIsNamed) {
+  const std::string path = (fs::temp_directory_path() / "p4_cut_test.mkv").string();
+  constexpr int kFrames = 120;
+  {
+    VideoWriterOptions options;
+    options.width = 320;
+    options.height = 240;
+    options.fps = 60;
+    VideoWriter writer(path, options);
+    for (int k = 0; k < kFrames; ++k) writer.Write(Pattern(320, 240, k));
+    writer.Close();
+  }
+  fs::resize_file(path, fs::file_size(path) * 2 / 3);
+  int read = 0;
+  {
+    VideoReader reader(path);
+    ImageView view;
+    TimeNs pts = 0;
+    while (reader.ReadView(&view, &pts)) ++read;
+  }
+  EXPECT_GT(read, kFrames / 3);
+  EXPECT_LT(read, kFrames);
+  const std::string garbage = (fs::temp_directory_path() / "p4_garbage_test.mp4").string();
+  {
+    std::ofstream f(garbage, std::ios::binary);
+    f << std::string(5000, 'x');
+  }
+  try {
+    VideoReader reader(garbage);
+    ADD_FAILURE() << "opened a file of garbage";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(garbage), std::string::npos) << e.what();
+  }
+  fs::remove(path);
+  fs::remove(garbage);
 }
 
 // /dev/videoN goes to FFmpeg's V4L2 input (libavdevice): a device that is not there is named in

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 
 #include "p4/core/error.h"
 
@@ -36,10 +37,16 @@ bool FrameSetReader::ReadAll() {
     if (s.consumed && !s.ended) {
       try {
         s.has_frame = s.reader->ReadView(&s.view, &s.pts);
+        if (!s.has_frame && !s.reader->ended_with().empty()) {
+          errors_.push_back(s.reader->ended_with());
+        }
       } catch (const Error& e) {
-        if (!VideoReader::IsLive(s.name)) throw;  // a broken file is an error of the run
+        // One source's failure ends that source, never the run.
         errors_.push_back(e.what());
         s.has_frame = false;
+      }
+      for (const VideoGap& g : s.reader->TakeGaps()) {
+        gaps_.push_back({static_cast<int>(&s - sources_.data()), g});
       }
       if (s.has_frame) {
         s.pts = s.clock.WorldTime(s.pts) + shift_;
@@ -54,6 +61,8 @@ bool FrameSetReader::ReadAll() {
   }
   return any;
 }
+
+std::vector<SourceGap> FrameSetReader::TakeGaps() { return std::exchange(gaps_, {}); }
 
 bool FrameSetReader::StartAgain() {
   if (!loop_ || !any_frame_) return false;

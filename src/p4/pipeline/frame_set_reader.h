@@ -3,7 +3,8 @@
 // fastest source's frame period of it (a 60 fps camera beside a 120 fps one joins the set of
 // the 120 fps frame taken with it, not the one half its period before). A source that ends early,
 // or lacks a frame, leaves its camera out of the set; the run goes on until every source has ended.
-// A live source (device, stream) that fails while reading ends there too, with its error kept in
+// Damaged stretches of a source are skipped (VideoReader) and handed over by TakeGaps(); a source
+// that fails while reading (a cut file, a lost connection) ends there, with its reason kept in
 // ended_with_error(). With `loop`, video files start again when every source has ended, their times
 // continuing (shifted by the span played plus one frame period), so a recording plays for as long
 // as the run lasts (a kiosk at a club, or a live view that must stay up until a viewer has seen
@@ -28,6 +29,12 @@ struct FrameSet {
   std::vector<TimeNs> times;  // each image's own time in the rig's clock (top row), ns
 };
 
+// A damaged stretch of one source (times in the source's own clock: seconds into the file).
+struct SourceGap {
+  int source = 0;
+  VideoGap gap;
+};
+
 class FrameSetReader {
  public:
   // Opens every source; throws p4::Error naming the one that fails, or when `loop` is asked of a
@@ -42,6 +49,8 @@ class FrameSetReader {
   const VideoInfo& info(int i) const { return sources_[i].reader->info(); }
   const std::string& name(int i) const { return sources_[i].name; }
   const std::vector<std::string>& ended_with_error() const { return errors_; }
+  // The damaged stretches closed since the last call, in the order they were met.
+  std::vector<SourceGap> TakeGaps();
   int loops() const { return loops_; }  // times the files have started again
 
  private:
@@ -60,6 +69,7 @@ class FrameSetReader {
 
   std::vector<Source> sources_;
   std::vector<std::string> errors_;
+  std::vector<SourceGap> gaps_;
   bool loop_ = false;
   int loops_ = 0;
   TimeNs first_pts_ = 0, last_pts_ = 0, shift_ = 0;

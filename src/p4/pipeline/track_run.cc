@@ -35,6 +35,11 @@ std::string TrackRunSummary::Report() const {
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    if (gaps[i] == 0) continue;
+    report += fmt::format("; {}: {} damaged frame(s) skipped in {} stretch(es)", source_names[i],
+                          frames_lost[i], gaps[i]);
+  }
   if (loops > 0) report += fmt::format("; the files played {} times", loops + 1);
   if (stopped) report += "; stopped before the sources ended";
   if (worst_lag_ms > 0.0) {
@@ -67,7 +72,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(out_dir + ": cannot create the folder (" + ec.message() + ")");
-  RunWriter writer(out_dir, rig);
+  RunWriter writer(out_dir, rig, extras.resume);
   track::FrameSetTracker tracker(rig, classes, options);
   game::EventDetector detector(game.detector);
   game::Referee referee(game.referee);
@@ -127,7 +132,18 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::optional<TimeNs> first_t;
   auto paced_from = start;
   TimeNs last_t = 0;
+  summary.frames_lost.assign(sources.size(), 0);
+  summary.gaps.assign(sources.size(), 0);
+  summary.source_names = sources;
+  const auto take_gaps = [&] {
+    for (const SourceGap& g : reader.TakeGaps()) {
+      summary.frames_lost[g.source] += g.gap.frames_lost;
+      ++summary.gaps[g.source];
+      if (extras.on_gap) extras.on_gap(sources[g.source], g.gap);
+    }
+  };
   while (reader.Next(&set)) {
+    take_gaps();
     if (extras.stop && extras.stop->load()) {
       summary.stopped = true;
       break;
@@ -176,6 +192,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       progress(summary.frame_sets);
     }
   }
+  take_gaps();
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
   }
@@ -192,6 +209,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     writer.WriteScore(ScoreToJson(score, referee.points_played(), game.players));
   }
   summary.sources_ended_with_error = reader.ended_with_error();
+  summary.rows_found = writer.rows_found();
   summary.loops = reader.loops();
   summary.video_seconds = first_t ? ToSeconds(last_t - *first_t) : 0.0;
   summary.wall_seconds =

@@ -12,6 +12,7 @@
 #include "p4/game/event_detector.h"
 #include "p4/game/referee.h"
 #include "p4/geometry/rig.h"
+#include "p4/io/video_reader.h"
 #include "p4/pipeline/live_sink.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/frame_set_tracker.h"
@@ -42,6 +43,11 @@ struct RunExtras {
   // Set by another thread (e.g. on Ctrl-C): the run ends after the frame set in hand, its files
   // finished as at the sources' end (held rows written, the last score). May be null.
   const std::atomic<bool>* stop = nullptr;
+  // Continue a run that stopped (kill -9, a crash): the run is made again from its start (it is
+  // deterministic), the rows already in out_dir checked and kept, the rest appended (RunWriter).
+  bool resume = false;
+  // Called once for each damaged stretch a source skipped (io/video_reader.h), as it is met.
+  std::function<void(const std::string& source, const VideoGap& gap)> on_gap;
 };
 
 struct TrackRunSummary {
@@ -53,9 +59,14 @@ struct TrackRunSummary {
   int64_t roi_searches = 0;
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
-  std::vector<std::string> sources_ended_with_error;  // live sources that failed mid-run
-  bool stopped = false;                               // ended by RunExtras::stop
-  int loops = 0;                                      // times the files started again
+  std::vector<std::string> sources_ended_with_error;  // sources that failed mid-run
+  // Damaged input skipped (the frames around it were tracked): per source, in the sources' order.
+  std::vector<int64_t> frames_lost;
+  std::vector<int64_t> gaps;
+  std::vector<std::string> source_names;
+  int64_t rows_found = 0;  // resume: rows (and events) already in the files, found again
+  bool stopped = false;    // ended by RunExtras::stop
+  int loops = 0;           // times the files started again
   int64_t bounces = 0, hits = 0, points = 0;
   // --realtime only: how far processing fell behind the video's own clock.
   double worst_lag_ms = 0.0;
