@@ -276,6 +276,14 @@ int Run(TrackArgs a) {
     spdlog::warn("{}: damaged data skipped: {} frame(s) lost between {} and {} of the recording",
                  source, g.frames_lost, at(g.after, "its start"), at(g.before, "its end"));
   };
+  extras.on_source = [](const std::string& source, const SourceEvent& e) {
+    if (e.back) {
+      spdlog::info("{}: back after {:.1f} s; tracked again", source, e.seconds_away);
+    } else {
+      spdlog::warn("{}: lost ({}); opening it again in the background, the other cameras go on",
+                   source, e.reason);
+    }
+  };
   spdlog::info("tracking {} source(s) with {} ({} camera(s)) into {}", a.sources.size(), a.rig,
                rig.size(), a.out);
   const TrackRunSummary summary = RunTracking(

@@ -1,8 +1,14 @@
 #include "p4/pipeline/frame_set_reader.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
+#include <thread>
 
 #include "p4/core/error.h"
 #include "p4/io/video_writer.h"
@@ -14,17 +20,18 @@ namespace fs = std::filesystem;
 
 constexpr double kMs = 1.001e-3;  // Matroska's time resolution
 
-// A clip of `frames` grey frames of 64x48 at `fps`, lossless (frame k stamped k / fps, which
-// Matroska keeps to the millisecond).
-std::string WriteClip(const std::string& name, int fps, int frames) {
-  const std::string path = (fs::temp_directory_path() / name).string();
+// A clip of `frames` grey frames of 64x48 (or the size given) at `fps`, lossless (frame k stamped
+// k / fps, which Matroska keeps to the millisecond) or in the codec given.
+std::string WriteClip(const std::string& name, int fps, int frames, int width = 64, int height = 48,
+                      VideoCodec codec = VideoCodec::kFFV1) {
+  std::string path = (fs::temp_directory_path() / name).string();
   VideoWriterOptions options;
-  options.width = 64;
-  options.height = 48;
+  options.width = width;
+  options.height = height;
   options.fps = fps;
-  options.codec = VideoCodec::kFFV1;
+  options.codec = codec;
   VideoWriter writer(path, options);
-  I420Image image(64, 48);
+  I420Image image(width, height);
   for (int k = 0; k < frames; ++k) writer.Write(image);
   writer.Close();
   return path;
@@ -117,6 +124,67 @@ TEST(FrameSetReader, ALiveSourceCannotLoop) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/dev/video97"), std::string::npos) << e.what();
   }
+}
+
+// A network camera whose stream drops and comes back (here: a TCP stream served by FFmpeg, then a
+// second served on the same port as soon as the first ends): the reader says it is lost, opens it
+// again in the background, says it is back, and its frames go on with time still increasing.
+// The test waits on what the reader says, not on a clock (the deadline only guards a hang).
+TEST(FrameSetReader, ALiveSourceThatDropsIsOpenedAgain) {
+  // H.264 in MPEG-TS, as a network camera sends.
+  const std::string clip = WriteClip("p4_fsr_live.ts", 30, 45, 160, 120, VideoCodec::kH264);
+  const int port = 20000 + (::getpid() + 7919) % 20000;
+  const std::string url = "tcp://127.0.0.1:" + std::to_string(port);
+  const std::string serve_once = "ffmpeg -v error -re -i " + clip + " -c copy -f mpegts '" + url +
+                                 "?listen=1&listen_timeout=60000' > /dev/null 2>&1";
+  // Two servers one after the other: the second listens as soon as the first has ended.
+  ASSERT_EQ(std::system(("(" + serve_once + "; " + serve_once + ") &").c_str()), 0);
+  std::atomic<bool> stop{false};
+  FrameSetReaderOptions options;
+  options.reconnect_min_s = 0.05;
+  options.reconnect_max_s = 0.2;
+  options.stop = &stop;
+  std::unique_ptr<FrameSetReader> reader;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!reader && std::chrono::steady_clock::now() < deadline) {
+    try {
+      reader = std::make_unique<FrameSetReader>(std::vector<std::string>{url}, options);
+    } catch (const Error&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  ASSERT_TRUE(reader) << "could not connect to " << url;
+  FrameSet set;
+  int before = 0, after = 0;
+  bool lost = false, back = false;
+  TimeNs last = -1;
+  while (after < 30 && std::chrono::steady_clock::now() < deadline && reader->Next(&set)) {
+    for (const SourceEvent& e : reader->TakeSourceEvents()) {
+      if (!e.back) {
+        EXPECT_FALSE(lost) << "lost twice";
+        lost = true;
+      } else {
+        EXPECT_TRUE(lost);
+        EXPECT_GT(e.seconds_away, 0.0);
+        back = true;
+      }
+    }
+    ASSERT_TRUE(set.images[0].has_value());
+    EXPECT_GT(set.t, last);
+    if (back && last >= 0 && after == 0) {
+      // The new stream's first frame comes after the old stream's last, by about the time away.
+      EXPECT_GT(ToSeconds(set.t - last), 0.0);
+    }
+    last = set.t;
+    (back ? after : before) += 1;
+  }
+  stop = true;
+  EXPECT_TRUE(lost);
+  EXPECT_TRUE(back);
+  EXPECT_GE(before, 35);
+  EXPECT_GE(after, 30);
+  reader.reset();
+  fs::remove(clip);
 }
 
 }  // namespace

@@ -40,6 +40,12 @@ std::string TrackRunSummary::Report() const {
     report += fmt::format("; {}: {} damaged frame(s) skipped in {} stretch(es)", source_names[i],
                           frames_lost[i], gaps[i]);
   }
+  for (std::size_t i = 0; i < reconnects.size(); ++i) {
+    if (reconnects[i] > 0) {
+      report +=
+          fmt::format("; {}: back {} time(s) after being lost", source_names[i], reconnects[i]);
+    }
+  }
   if (loops > 0) report += fmt::format("; the files played {} times", loops + 1);
   if (stopped) report += "; stopped before the sources ended";
   if (worst_lag_ms > 0.0) {
@@ -60,7 +66,11 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::string why;
   if (!options.IsValid(&why)) throw Error("tracking options: " + why);
   if (!game.IsValid(&why)) throw Error("game options: " + why);
-  FrameSetReader reader(sources, extras.loop, RigClocks(rig));
+  FrameSetReaderOptions reading;
+  reading.loop = extras.loop;
+  reading.clocks = RigClocks(rig);
+  reading.stop = extras.stop;
+  FrameSetReader reader(sources, reading);
   for (int i = 0; i < reader.size(); ++i) {
     const VideoInfo& info = reader.info(i);
     const Camera& camera = rig.cameras[i];
@@ -135,11 +145,16 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   summary.frames_lost.assign(sources.size(), 0);
   summary.gaps.assign(sources.size(), 0);
   summary.source_names = sources;
+  summary.reconnects.assign(sources.size(), 0);
   const auto take_gaps = [&] {
     for (const SourceGap& g : reader.TakeGaps()) {
       summary.frames_lost[g.source] += g.gap.frames_lost;
       ++summary.gaps[g.source];
       if (extras.on_gap) extras.on_gap(sources[g.source], g.gap);
+    }
+    for (const SourceEvent& e : reader.TakeSourceEvents()) {
+      summary.reconnects[e.source] += e.back ? 1 : 0;
+      if (extras.on_source) extras.on_source(sources[e.source], e);
     }
   };
   while (reader.Next(&set)) {

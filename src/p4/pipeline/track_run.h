@@ -13,6 +13,7 @@
 #include "p4/game/referee.h"
 #include "p4/geometry/rig.h"
 #include "p4/io/video_reader.h"
+#include "p4/pipeline/frame_set_reader.h"
 #include "p4/pipeline/live_sink.h"
 #include "p4/segment/color_classes.h"
 #include "p4/track/frame_set_tracker.h"
@@ -48,6 +49,8 @@ struct RunExtras {
   bool resume = false;
   // Called once for each damaged stretch a source skipped (io/video_reader.h), as it is met.
   std::function<void(const std::string& source, const VideoGap& gap)> on_gap;
+  // Called when a live source is lost (it is opened again in the background) and when it is back.
+  std::function<void(const std::string& source, const SourceEvent& event)> on_source;
 };
 
 struct TrackRunSummary {
@@ -64,9 +67,10 @@ struct TrackRunSummary {
   std::vector<int64_t> frames_lost;
   std::vector<int64_t> gaps;
   std::vector<std::string> source_names;
-  int64_t rows_found = 0;  // resume: rows (and events) already in the files, found again
-  bool stopped = false;    // ended by RunExtras::stop
-  int loops = 0;           // times the files started again
+  std::vector<int64_t> reconnects;  // live sources: times each came back after being lost
+  int64_t rows_found = 0;           // resume: rows (and events) already in the files, found again
+  bool stopped = false;             // ended by RunExtras::stop
+  int loops = 0;                    // times the files started again
   int64_t bounces = 0, hits = 0, points = 0;
   // --realtime only: how far processing fell behind the video's own clock.
   double worst_lag_ms = 0.0;
