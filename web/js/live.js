@@ -13,7 +13,7 @@ const tiles = config.cameras.map((cam, i) => {
   const tile = document.createElement('div');
   tile.className = 'tile';
   tile.dataset.camera = cam.name;
-  tile.innerHTML = `<img alt="${escapeHtml(cam.name)}"><canvas></canvas><span class="label">${escapeHtml(cam.name)}</span>`;
+  tile.innerHTML = `<img alt="${escapeHtml(cam.name)}"><canvas></canvas><span class="label">${escapeHtml(cam.name)}</span><span class="lost-note" hidden>no picture: reconnecting…</span>`;
   document.getElementById('tiles').appendChild(tile);
   const img = tile.querySelector('img'), canvas = tile.querySelector('canvas');
   canvas.width = cam.width;
@@ -75,6 +75,10 @@ function drawMarkers(i) {
 function drawOverlay(tile, cam) {
   const { ctx, canvas } = tile;
   ctx.clearRect(0, 0, canvas.width, canvas.height);
+  // A live camera that dropped: its last picture dimmed, its name saying so until it is back.
+  const lost = !!(cam && cam.lost);
+  canvas.parentElement.classList.toggle('lost', lost);
+  canvas.parentElement.querySelector('.lost-note').hidden = !lost;
   ctx.lineWidth = Math.max(2, canvas.width / 400);
   drawMarkers(tiles.indexOf(tile));
   if (!cam) return;

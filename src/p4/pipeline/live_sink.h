@@ -20,6 +20,8 @@ class LiveSink {
   // frame set (detected and the referee's); `score` is null without a referee.
   virtual void OnFrameSet(const FrameSet& set, const track::FrameSetResult& result,
                           std::span<const game::Event> events, const game::MatchScore* score) = 0;
+  // A live source lost (being opened again) or back (FrameSetReader), before the next frame set.
+  virtual void OnSourceEvent(const SourceEvent& /*event*/) {}
 };
 
 }  // namespace p4

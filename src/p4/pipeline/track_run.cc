@@ -155,6 +155,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     for (const SourceEvent& e : reader.TakeSourceEvents()) {
       summary.reconnects[e.source] += e.back ? 1 : 0;
       if (extras.on_source) extras.on_source(sources[e.source], e);
+      if (extras.live) extras.live->OnSourceEvent(e);
     }
   };
   while (reader.Next(&set)) {
@@ -208,6 +209,8 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     }
   }
   take_gaps();
+  // Stopped while waiting for a source to come back: Next() returned at the stop.
+  if (extras.stop && extras.stop->load()) summary.stopped = true;
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
   }

@@ -89,6 +89,24 @@ int64_t LiveHub::frames_offered() const { return offered_; }
 
 int64_t LiveHub::frames_dropped() const { return dropped_; }
 
+void LiveHub::OnSourceEvent(const SourceEvent& event) {
+  if (event.source < 0 || event.source >= rig_.size()) return;
+  lost_.resize(rig_.size(), false);
+  lost_[event.source] = !event.back;
+  last_state_t_ = -(int64_t{1} << 62);  // the next frame set's state says it at once...
+  // ...and the state published now says it too (with every camera lost there is no next set).
+  // (A rare event: the lock is held for pointer copies only, as the web threads hold it.)
+  const std::shared_ptr<const std::string> published = State();
+  if (!published) return;
+  nlohmann::json state = nlohmann::json::parse(*published);
+  if (event.source < static_cast<int>(state["cameras"].size())) {
+    state["cameras"][event.source]["lost"] = !event.back;
+  }
+  auto text = std::make_shared<const std::string>(state.dump());
+  std::lock_guard lock(mutex_);
+  state_ = std::move(text);
+}
+
 void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& result,
                          std::span<const game::Event> events, const game::MatchScore* score) {
   if (result.state) {
@@ -163,6 +181,7 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
     const auto& search =
         c < static_cast<int>(result.searches.size()) ? result.searches[c] : track::CameraSearch{};
     cam["present"] = search.present;
+    cam["lost"] = c < static_cast<int>(lost_.size()) && lost_[c];
     if (!search.roi.empty()) {
       cam["roi"] = {search.roi.x0, search.roi.y0, search.roi.x1, search.roi.y1};
     } else {

@@ -53,6 +53,8 @@ class LiveHub : public LiveSink {
 
   void OnFrameSet(const FrameSet& set, const track::FrameSetResult& result,
                   std::span<const game::Event> events, const game::MatchScore* score) override;
+  // A lost camera is marked in the state ("lost": true) until it is back.
+  void OnSourceEvent(const SourceEvent& event) override;
 
   // For the web server (any thread). Null until there is one.
   std::shared_ptr<const std::string> State() const;
@@ -77,6 +79,7 @@ class LiveHub : public LiveSink {
   // Tracking thread only.
   std::deque<std::array<double, 3>> trail_;
   std::deque<nlohmann::json> recent_events_;  // as they go into the state
+  std::vector<bool> lost_;                    // per camera: a live source being opened again
   TimeNs last_state_t_ = -(int64_t{1} << 62), last_frame_t_ = -(int64_t{1} << 62);
 
   mutable std::mutex mutex_;

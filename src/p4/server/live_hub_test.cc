@@ -77,6 +77,33 @@ TEST(LiveHub, PublishesStateAndPictures) {
 
 // Frame sets far faster than the picture rate: the hub takes at most frame_hz pictures a second
 // of video time and never blocks the caller.
+// A live camera lost and back (FrameSetReader's events): the state marks it lost in between, so
+// the page can say so on its tile.
+TEST(LiveHub, MarksALostCameraUntilItIsBack) {
+  const Rig rig = sim::ClubRig(2, 640, 480, false);
+  LiveHub hub(rig, {"A", "B"}, LiveOptions{});
+  I420Image image(640, 480);
+  FrameSet set;
+  track::FrameSetResult result;
+  result.searches.resize(2);
+  const auto lost_in_state = [&](double t) {
+    set.t = result.t = FromSeconds(t);
+    set.images = {image.View(), std::nullopt};
+    hub.OnFrameSet(set, result, {}, nullptr);
+    const auto json = nlohmann::json::parse(*hub.State());
+    return std::pair{json["cameras"][0]["lost"].get<bool>(),
+                     json["cameras"][1]["lost"].get<bool>()};
+  };
+  EXPECT_EQ(lost_in_state(1.0), std::pair(false, false));
+  hub.OnSourceEvent({1, false, 0.0, "the stream ended"});
+  // Published at once (every camera may be lost: no frame set comes)...
+  EXPECT_TRUE(nlohmann::json::parse(*hub.State())["cameras"][1]["lost"].get<bool>());
+  // ...and in the next frame set's state, whatever the state rate.
+  EXPECT_EQ(lost_in_state(1.001), std::pair(false, true));
+  hub.OnSourceEvent({1, true, 2.5, ""});
+  EXPECT_EQ(lost_in_state(1.002), std::pair(false, false));
+}
+
 TEST(LiveHub, TakesPicturesAtItsOwnRate) {
   const Rig rig = sim::ClubRig(1, 1280, 720, false);
   LiveOptions options;
