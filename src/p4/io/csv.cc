@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -53,6 +54,15 @@ double CsvNumber(const std::string& path, std::size_t row, const std::string& ce
   } catch (const std::exception&) {
     throw Error(fmt::format("{}: line {}: '{}' is not a number", path, row + 2, cell));
   }
+}
+
+int CsvInt(const std::string& path, std::size_t row, const std::string& cell, int lo, int hi) {
+  const double v = CsvNumber(path, row, cell);
+  if (!(v >= lo && v <= hi) || v != std::floor(v)) {
+    throw Error(fmt::format("{}: line {}: '{}' is not a whole number in {}-{}", path, row + 2, cell,
+                            lo, hi));
+  }
+  return static_cast<int>(v);
 }
 
 }  // namespace p4

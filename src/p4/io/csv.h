@@ -15,5 +15,7 @@ std::vector<std::vector<std::string>> ReadCsv(const std::string& path, const std
 
 // The cell as a number; throws p4::Error naming the file, the line (row + 2) and the text.
 double CsvNumber(const std::string& path, std::size_t row, const std::string& cell);
+// The cell as a whole number in [lo, hi]; throws p4::Error naming the file, line and text.
+int CsvInt(const std::string& path, std::size_t row, const std::string& cell, int lo, int hi);
 
 }  // namespace p4

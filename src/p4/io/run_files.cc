@@ -69,7 +69,7 @@ std::vector<TrajectoryRow> ReadTrajectoryCsv(const std::string& path) {
     row.position = {CsvNumber(path, i, r[1]), CsvNumber(path, i, r[2]), CsvNumber(path, i, r[3])};
     row.velocity = {CsvNumber(path, i, r[4]), CsvNumber(path, i, r[5]), CsvNumber(path, i, r[6])};
     row.measured = CsvNumber(path, i, r[7]) != 0.0;
-    row.cameras = static_cast<int>(CsvNumber(path, i, r[8]));
+    row.cameras = CsvInt(path, i, r[8], 0, 1024);
     row.residual_px = CsvNumber(path, i, r[9]);
     out.push_back(row);
   }
