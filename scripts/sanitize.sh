@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/ccache}"
 cmake --preset tsan > /dev/null
 cmake --build --preset tsan -j "$(nproc)"
-export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/scripts/tsan.supp"
 # The tests run from the project's root, as CTest runs them.
 for t in src/p4/track/p4_track_test:'FrameSetTrackerTest.ThreadsChangeNothingButTheSpeed' \
   src/p4/server/p4_server_test:'*' src/p4/pipeline/p4_pipeline_test:'FrameSetReader*'; do
