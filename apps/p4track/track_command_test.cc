@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "p4/io/test_damage.h"
 #include "p4track_test_support.h"
 
 namespace {
@@ -123,15 +124,8 @@ TEST_F(TrackCommand, WritesTheRunFilesAsDesigned) {
 TEST_F(TrackCommand, ADamagedRecordingLosesOnlyTheDamagedFrames) {
   const fs::path damaged = *dir_ / "damaged_cam0.mp4";
   fs::copy_file(sim_ / "cam0.mp4", damaged, fs::copy_options::overwrite_existing);
-  {
-    std::fstream f(damaged, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(static_cast<std::streamoff>(fs::file_size(damaged) * 6 / 10));
-    uint32_t x = 2463534242u;
-    for (int i = 0; i < 20'000; ++i) {
-      x ^= x << 13, x ^= x >> 17, x ^= x << 5;  // xorshift32
-      f.put(static_cast<char>(x & 0xff));
-    }
-  }
+  p4::testing::OverwriteWithNoise(
+      damaged.string(), static_cast<std::streamoff>(fs::file_size(damaged) * 6 / 10), 20'000);
   const fs::path run = *dir_ / "run_damaged";
   std::string out;
   ASSERT_EQ(P4track("track --rig " + (run_ / "rig_synced.yaml").string() + " --classes " +

@@ -28,9 +28,6 @@ GrayFrame ReadImage(const std::filesystem::path& p) {
   return {p.filename().string(), gray};
 }
 
-}  // namespace
-
-namespace {
 calib::MarkerLayout ParseMarkerLayout(const std::string& path) {
   const YAML::Node root = LoadYamlMap(path);
   const YAML::Node list = YamlList(path, root, "markers");
@@ -48,20 +45,11 @@ calib::MarkerLayout ParseMarkerLayout(const std::string& path) {
     if (!corners.IsDefined())
       throw Error(where + " (id " + std::to_string(id) + "): missing 'corners'");
     // An opencv-matrix ({rows, cols, data}) or a list of points (or of numbers).
-    const YAML::Node rows = corners.IsMap() ? corners["data"] : corners;
-    if (!rows.IsSequence()) throw Error(where + ": 'corners' must be a matrix or a list");
     std::vector<double> values;
-    const auto number = [&](const YAML::Node& v) {
-      double x = 0.0;
-      if (!YamlNumber(v, &x)) throw Error(where + ": 'corners' holds a value that is not a number");
-      values.push_back(x);
-    };
-    for (const YAML::Node& row : rows) {
-      if (row.IsSequence()) {
-        for (const YAML::Node& v : row) number(v);
-      } else {
-        number(row);
-      }
+    int rows = 0, cols = 0;
+    std::string why;
+    if (!YamlMatrix(corners, &values, &rows, &cols, &why)) {
+      throw Error(fmt::format("{}: 'corners': {}", where, why));
     }
     if (values.size() != 12) {
       throw Error(fmt::format("{} (id {}): 'corners' must be 4 points x,y,z, got {} numbers", where,

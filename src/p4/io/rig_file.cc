@@ -13,70 +13,6 @@
 namespace p4 {
 namespace {
 
-// Flattens a matrix node into numbers; accepts an opencv-matrix map or a (nested) list.
-bool ReadNumbers(const YAML::Node& node, std::vector<double>* values, int* rows, int* cols,
-                 std::string* why) {
-  values->clear();
-  const auto number = [&](const YAML::Node& item) {
-    double v = 0.0;
-    if (!YamlNumber(item, &v)) return false;
-    values->push_back(v);
-    return true;
-  };
-  if (node.IsMap()) {
-    const YAML::Node data = node["data"];
-    if (!YamlInt(node["rows"], rows) || !YamlInt(node["cols"], cols) || !data.IsSequence()) {
-      *why = "expected a matrix with rows, cols and data";
-      return false;
-    }
-    for (const auto& item : data) {
-      if (!number(item)) {
-        *why = "data holds a value that is not a number";
-        return false;
-      }
-    }
-    if (*rows <= 0 || *cols <= 0 ||
-        static_cast<int64_t>(values->size()) != static_cast<int64_t>(*rows) * *cols) {
-      *why = "data has " + std::to_string(values->size()) + " numbers for a " +
-             std::to_string(*rows) + "x" + std::to_string(*cols) + " matrix";
-      return false;
-    }
-    return true;
-  }
-  if (node.IsSequence()) {
-    *rows = 0;
-    *cols = -1;
-    for (const auto& row : node) {
-      if (row.IsSequence()) {
-        const int before = static_cast<int>(values->size());
-        for (const auto& item : row) {
-          if (!number(item)) {
-            *why = "holds a value that is not a number";
-            return false;
-          }
-        }
-        const int n = static_cast<int>(values->size()) - before;
-        if (*cols >= 0 && n != *cols) {
-          *why = "rows of different lengths";
-          return false;
-        }
-        *cols = n;
-        ++*rows;
-      } else if (!number(row)) {
-        *why = "holds a value that is not a number";
-        return false;
-      }
-    }
-    if (*cols < 0) {  // a flat list
-      *rows = 1;
-      *cols = static_cast<int>(values->size());
-    }
-    return true;
-  }
-  *why = "expected a matrix";
-  return false;
-}
-
 std::vector<double> ReadMatrix(const YAML::Node& camera, const std::string& key, int want_rows,
                                int want_cols, bool either_orientation, const std::string& where) {
   const YAML::Node node = camera[key];
@@ -84,7 +20,7 @@ std::vector<double> ReadMatrix(const YAML::Node& camera, const std::string& key,
   std::vector<double> values;
   int rows = 0, cols = 0;
   std::string why;
-  if (!ReadNumbers(node, &values, &rows, &cols, &why)) throw Error(where + ": " + key + ": " + why);
+  if (!YamlMatrix(node, &values, &rows, &cols, &why)) throw Error(where + ": " + key + ": " + why);
   const bool size_ok = (rows == want_rows && cols == want_cols) ||
                        (either_orientation && rows == want_cols && cols == want_rows) ||
                        (rows == 1 && cols == want_rows * want_cols);  // flat list
@@ -129,9 +65,6 @@ cv::Mat ToMat(const double* data, int rows, int cols) {
   return mat;
 }
 
-}  // namespace
-
-namespace {
 Rig ParseRig(const std::string& path) {
   const YAML::Node root = LoadYamlMap(path);
   const YAML::Node cameras = YamlList(path, root, "cameras");

@@ -194,9 +194,8 @@ TEST_F(RigFileTest, EveryKindOfBadFileIsNamed) {
               {"twice.yaml", "cam0", "twice"});
   // Found by fuzzing (fuzz/corpus/rig_file/regression_*): a matrix whose rows x cols overflows an
   // int, a root that is a list, and a file on which OpenCV's YAML parser never returned.
-  ExpectError(Write("overflow.yaml",
-                    YamlWith(Replace(kGoodCamera, "rows: 3\n        cols: 1",
-                                     "rows: 2147483647\n        cols: 3"))),
+  ExpectError(Write("overflow.yaml", YamlWith(Replace(kGoodCamera, "rows: 3\n        cols: 1",
+                                                      "rows: 2147483647\n        cols: 3"))),
               {"overflow.yaml", "translation"});
   ExpectError(Write("list.yaml", "%YAML:1.0\n---\n- 1\n- 2\n"), {"list.yaml", "map"});
   ExpectError(Write("loop.yaml", "%YAML:1.0\n---  - 2\n-\n"), {"loop.yaml"});

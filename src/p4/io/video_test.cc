@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "p4/core/error.h"
+#include "p4/io/test_damage.h"
 #include "p4/io/video_reader.h"
 #include "p4/io/video_writer.h"
 
@@ -91,17 +92,6 @@ TEST(Video, MissingFileIsNamed) {
   EXPECT_THROW(VideoWriter("/tmp/p4_odd.mp4", odd), Error);
 }
 
-// Overwrites `count` bytes at `offset` of a file with a fixed pseudo-random pattern.
-void Damage(const std::string& path, std::streamoff offset, int count) {
-  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
-  f.seekp(offset);
-  uint32_t x = 2463534242u;
-  for (int i = 0; i < count; ++i) {
-    x ^= x << 13, x ^= x >> 17, x ^= x << 5;  // xorshift32
-    f.put(static_cast<char>(x & 0xff));
-  }
-}
-
 // A recording with bad bytes in the middle loses the frames the decoder cannot make, no more:
 // reading goes on to the last frame, and the gap says where and how much (issue: a damaged
 // stretch once ended the whole run with "decoding failed").
@@ -110,7 +100,7 @@ TEST(Video, ADamagedStretchIsSkippedAndReported) {
   constexpr int kFrames = 240, kFps = 60;
   WriteClip(path, 320, 240, kFps, kFrames);
   const auto size = static_cast<std::streamoff>(fs::file_size(path));
-  Damage(path, size / 2, 2000);
+  testing::OverwriteWithNoise(path, size / 2, 2000);
   VideoReader reader(path);
   ImageView view;
   TimeNs pts = 0, last = -1;

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -46,6 +45,69 @@ bool YamlNumber(const YAML::Node& node, double* value) {
 bool YamlInt(const YAML::Node& node, int* value) {
   if (!node.IsDefined() || !node.IsScalar()) return false;
   return YAML::convert<int>::decode(node, *value);
+}
+
+bool YamlMatrix(const YAML::Node& node, std::vector<double>* values, int* rows, int* cols,
+                std::string* why) {
+  values->clear();
+  const auto number = [&](const YAML::Node& item) {
+    double v = 0.0;
+    if (!YamlNumber(item, &v)) return false;
+    values->push_back(v);
+    return true;
+  };
+  if (node.IsMap()) {
+    const YAML::Node data = node["data"];
+    if (!YamlInt(node["rows"], rows) || !YamlInt(node["cols"], cols) || !data.IsSequence()) {
+      *why = "expected a matrix with rows, cols and data";
+      return false;
+    }
+    for (const auto& item : data) {
+      if (!number(item)) {
+        *why = "data holds a value that is not a number";
+        return false;
+      }
+    }
+    if (*rows <= 0 || *cols <= 0 ||
+        static_cast<int64_t>(values->size()) != static_cast<int64_t>(*rows) * *cols) {
+      *why = "data has " + std::to_string(values->size()) + " numbers for a " +
+             std::to_string(*rows) + "x" + std::to_string(*cols) + " matrix";
+      return false;
+    }
+    return true;
+  }
+  if (node.IsSequence()) {
+    *rows = 0;
+    *cols = -1;
+    for (const auto& row : node) {
+      if (row.IsSequence()) {
+        const int before = static_cast<int>(values->size());
+        for (const auto& item : row) {
+          if (!number(item)) {
+            *why = "holds a value that is not a number";
+            return false;
+          }
+        }
+        const int n = static_cast<int>(values->size()) - before;
+        if (*cols >= 0 && n != *cols) {
+          *why = "rows of different lengths";
+          return false;
+        }
+        *cols = n;
+        ++*rows;
+      } else if (!number(row)) {
+        *why = "holds a value that is not a number";
+        return false;
+      }
+    }
+    if (*cols < 0) {  // a flat list
+      *rows = 1;
+      *cols = static_cast<int>(values->size());
+    }
+    return true;
+  }
+  *why = "expected a matrix";
+  return false;
 }
 
 }  // namespace p4

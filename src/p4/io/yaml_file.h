@@ -8,6 +8,7 @@
 
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "p4/core/error.h"
 
@@ -23,6 +24,12 @@ YAML::Node YamlList(const std::string& path, const YAML::Node& root, const char*
 // A scalar as a number / an integer: false when it is not one (or not a scalar).
 bool YamlNumber(const YAML::Node& node, double* value);
 bool YamlInt(const YAML::Node& node, int* value);
+
+// A matrix as numbers, row by row: an opencv-matrix map ({rows, cols, data}, rows x cols numbers)
+// or a list of numbers (1 x n) or of rows of numbers (rows of one length). False, with the
+// reason in *why, otherwise.
+bool YamlMatrix(const YAML::Node& node, std::vector<double>* values, int* rows, int* cols,
+                std::string* why);
 
 // Runs `read`, which walks the nodes of `path`, turning yaml-cpp's exceptions on a malformed
 // structure (a key asked of a list, a conversion that fails) into p4::Error naming the file.

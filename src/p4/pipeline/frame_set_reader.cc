@@ -83,7 +83,7 @@ FrameSetReader::FrameSetReader(const std::vector<std::string>& sources, bool loo
 
 FrameSetReader::FrameSetReader(const std::vector<std::string>& sources,
                                FrameSetReaderOptions options)
-    : options_(std::move(options)), loop_(options_.loop) {
+    : options_(std::move(options)) {
   std::string why;
   if (!options_.IsValid(&why)) throw Error("frame sets: " + why);
   const std::vector<CameraClock>& clocks = options_.clocks;
@@ -93,7 +93,7 @@ FrameSetReader::FrameSetReader(const std::vector<std::string>& sources,
   }
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const std::string& s = sources[i];
-    if (loop_ && VideoReader::IsLive(s)) {
+    if (options_.loop && VideoReader::IsLive(s)) {
       throw Error(s + ": a live source cannot loop (only video files start again)");
     }
     Source source;
@@ -192,7 +192,7 @@ std::vector<SourceEvent> FrameSetReader::TakeSourceEvents() { return std::exchan
 std::vector<SourceGap> FrameSetReader::TakeGaps() { return std::exchange(gaps_, {}); }
 
 bool FrameSetReader::StartAgain() {
-  if (!loop_ || !any_frame_) return false;
+  if (!options_.loop || !any_frame_) return false;
   double fps = 0.0;
   for (Source& s : sources_) {
     s.reader = std::make_unique<VideoReader>(s.name);

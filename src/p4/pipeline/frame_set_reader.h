@@ -120,7 +120,6 @@ class FrameSetReader {
   FrameSetReaderOptions options_;
   // The wall clock of the first frame: a live source's time after it comes back.
   std::optional<std::chrono::steady_clock::time_point> first_wall_;
-  bool loop_ = false;
   int loops_ = 0;
   TimeNs first_pts_ = 0, last_pts_ = 0, shift_ = 0;
   TimeNs tolerance_ = 0;  // half the fastest source's frame period: a set's reach

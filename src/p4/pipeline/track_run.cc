@@ -35,16 +35,13 @@ std::string TrackRunSummary::Report() const {
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
-  for (std::size_t i = 0; i < gaps.size(); ++i) {
-    if (gaps[i] == 0) continue;
-    report += fmt::format("; {}: {} damaged frame(s) skipped in {} stretch(es)", source_names[i],
-                          frames_lost[i], gaps[i]);
-  }
-  for (std::size_t i = 0; i < reconnects.size(); ++i) {
-    if (reconnects[i] > 0) {
-      report +=
-          fmt::format("; {}: back {} time(s) after being lost", source_names[i], reconnects[i]);
+  for (const Source& s : sources) {
+    if (s.gaps > 0) {
+      report += fmt::format("; {}: {} damaged frame(s) skipped in {} stretch(es)", s.name,
+                            s.frames_lost, s.gaps);
     }
+    if (s.returns > 0)
+      report += fmt::format("; {}: back {} time(s) after being lost", s.name, s.returns);
   }
   if (loops > 0) report += fmt::format("; the files played {} times", loops + 1);
   if (stopped) report += "; stopped before the sources ended";
@@ -142,24 +139,21 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::optional<TimeNs> first_t;
   auto paced_from = start;
   TimeNs last_t = 0;
-  summary.frames_lost.assign(sources.size(), 0);
-  summary.gaps.assign(sources.size(), 0);
-  summary.source_names = sources;
-  summary.reconnects.assign(sources.size(), 0);
-  const auto take_gaps = [&] {
+  for (const std::string& name : sources) summary.sources.push_back({name});
+  const auto take_source_news = [&] {
     for (const SourceGap& g : reader.TakeGaps()) {
-      summary.frames_lost[g.source] += g.gap.frames_lost;
-      ++summary.gaps[g.source];
+      summary.sources[g.source].frames_lost += g.gap.frames_lost;
+      ++summary.sources[g.source].gaps;
       if (extras.on_gap) extras.on_gap(sources[g.source], g.gap);
     }
     for (const SourceEvent& e : reader.TakeSourceEvents()) {
-      summary.reconnects[e.source] += e.back ? 1 : 0;
+      summary.sources[e.source].returns += e.back ? 1 : 0;
       if (extras.on_source) extras.on_source(sources[e.source], e);
       if (extras.live) extras.live->OnSourceEvent(e);
     }
   };
   while (reader.Next(&set)) {
-    take_gaps();
+    take_source_news();
     if (extras.stop && extras.stop->load()) {
       summary.stopped = true;
       break;
@@ -208,7 +202,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
       progress(summary.frame_sets);
     }
   }
-  take_gaps();
+  take_source_news();
   // Stopped while waiting for a source to come back: Next() returned at the stop.
   if (extras.stop && extras.stop->load()) summary.stopped = true;
   if (smoother) {

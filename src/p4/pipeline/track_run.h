@@ -63,14 +63,16 @@ struct TrackRunSummary {
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
   std::vector<std::string> sources_ended_with_error;  // sources that failed mid-run
-  // Damaged input skipped (the frames around it were tracked): per source, in the sources' order.
-  std::vector<int64_t> frames_lost;
-  std::vector<int64_t> gaps;
-  std::vector<std::string> source_names;
-  std::vector<int64_t> reconnects;  // live sources: times each came back after being lost
-  int64_t rows_found = 0;           // resume: rows (and events) already in the files, found again
-  bool stopped = false;             // ended by RunExtras::stop
-  int loops = 0;                    // times the files started again
+  // Per source, in the sources' order: damaged input skipped (the frames around it were
+  // tracked) and, for live sources, returns after being lost.
+  struct Source {
+    std::string name;
+    int64_t frames_lost = 0, gaps = 0, returns = 0;
+  };
+  std::vector<Source> sources;
+  int64_t rows_found = 0;  // resume: rows (and events) already in the files, found again
+  bool stopped = false;    // ended by RunExtras::stop
+  int loops = 0;           // times the files started again
   int64_t bounces = 0, hits = 0, points = 0;
   // --realtime only: how far processing fell behind the video's own clock.
   double worst_lag_ms = 0.0;

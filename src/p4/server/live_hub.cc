@@ -24,7 +24,7 @@ bool LiveOptions::IsValid(std::string* error) const {
 
 LiveHub::LiveHub(const Rig& rig, const std::array<std::string, 2>& players,
                  const LiveOptions& options)
-    : rig_(rig), players_(players), options_(options) {
+    : rig_(rig), players_(players), options_(options), lost_(rig.cameras.size(), false) {
   nlohmann::ordered_json config;
   config["players"] = players;
   config["table"] = {{"length", table::kLength},        {"width", table::kWidth},
@@ -91,7 +91,6 @@ int64_t LiveHub::frames_dropped() const { return dropped_; }
 
 void LiveHub::OnSourceEvent(const SourceEvent& event) {
   if (event.source < 0 || event.source >= rig_.size()) return;
-  lost_.resize(rig_.size(), false);
   lost_[event.source] = !event.back;
   last_state_t_ = -(int64_t{1} << 62);  // the next frame set's state says it at once...
   // ...and the state published now says it too (with every camera lost there is no next set).
@@ -181,7 +180,7 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
     const auto& search =
         c < static_cast<int>(result.searches.size()) ? result.searches[c] : track::CameraSearch{};
     cam["present"] = search.present;
-    cam["lost"] = c < static_cast<int>(lost_.size()) && lost_[c];
+    cam["lost"] = static_cast<bool>(lost_[c]);
     if (!search.roi.empty()) {
       cam["roi"] = {search.roi.x0, search.roi.y0, search.roi.x1, search.roi.y1};
     } else {
