@@ -296,10 +296,12 @@ int Run(TrackArgs a) {
                  a.out);
   }
   if (summary.stopped) {
-    spdlog::info(
-        "stopped by Ctrl-C; the run's files are complete (continue with: p4track track "
-        "--resume {})",
-        a.out);
+    // Only a run of files that did not loop can be made again (--resume).
+    const bool resumable =
+        !a.loop && std::none_of(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
+    spdlog::info("stopped by Ctrl-C; the run's files are complete{}",
+                 resumable ? fmt::format(" (continue with: p4track track --resume {})", a.out)
+                           : std::string());
   } else {
     WriteRunJson(a, true);
   }

@@ -5,7 +5,7 @@
 import { createTableScene, addViewButtons, renderScore, escapeHtml, describeEvent } from './scene.js';
 
 const status = document.getElementById('status');
-const p4live = { tiles: 0, states: 0, pictures: 0, state: null };
+const p4live = { tiles: 0, states: 0, pictures: 0, renders: 0, state: null };
 window.p4live = p4live;
 
 const config = await (await fetch('/api/live/config')).json();
@@ -35,6 +35,12 @@ const view = createTableScene(document.getElementById('view3d'), {
   floorZ: t.floor_z, ballRadius: t.ball_radius,
 });
 addViewButtons(document.getElementById('view3d'), view);
+// The 3D view is drawn when something changed (a new state, the viewpoint moved, the window),
+// not at the screen's rate: a laptop that tracks and shows this page keeps more of its cores
+// for the tracking.
+let dirty = true;
+view.controls.addEventListener('change', () => { dirty = true; });
+window.addEventListener('resize', () => { dirty = true; });
 p4live.view = view;
 
 // Calibration markers (with --layout): where the rig projects them (magenta) and where the
@@ -106,6 +112,7 @@ async function poll() {
     const r = await fetch('/api/live/state', { cache: 'no-store' });
     if (r.status === 200) {
       const s = await r.json();
+      if (!p4live.state || s.t !== p4live.state.t) dirty = true;
       p4live.state = s;
       ++p4live.states;
       status.textContent = `t = ${s.t.toFixed(2)} s`;
@@ -127,4 +134,7 @@ async function poll() {
 renderScore(document.getElementById('score'), null, config.players);
 poll();
 if (config.markers && config.markers.length) pollMarkers();
-(function frame() { view.render(); requestAnimationFrame(frame); })();
+(function frame() {
+  if (dirty) { dirty = false; view.render(); ++p4live.renders; }
+  requestAnimationFrame(frame);
+})();

@@ -6,7 +6,7 @@
 // State JSON (GET /api/live/state): t, ball {x, y, z, speed, measured} or null, trail (the last
 // positions), cameras [{roi [x0, y0, x1, y1] or null, fell_back, detections [{u, v, d,
 // accepted}], epipolar [[[u, v], ...], ...]}] in each camera's pixels, score, events (the last
-// ones), seq.
+// ones, each with n: its number in the run, from 1, so a client can tell whether it missed one).
 #pragma once
 
 #include <array>
@@ -79,7 +79,8 @@ class LiveHub : public LiveSink {
   // Tracking thread only.
   std::deque<std::array<double, 3>> trail_;
   std::deque<nlohmann::json> recent_events_;  // as they go into the state
-  std::vector<bool> lost_;                    // per camera: a live source being opened again
+  int64_t events_seen_ = 0;
+  std::vector<bool> lost_;  // per camera: a live source being opened again
   TimeNs last_state_t_ = -(int64_t{1} << 62), last_frame_t_ = -(int64_t{1} << 62);
 
   mutable std::mutex mutex_;

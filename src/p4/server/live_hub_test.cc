@@ -104,22 +104,47 @@ TEST(LiveHub, MarksALostCameraUntilItIsBack) {
   EXPECT_EQ(lost_in_state(1.002), std::pair(false, false));
 }
 
+// A one-camera hub fed empty frame sets (no ball, no detection).
+struct OneCameraHub {
+  explicit OneCameraHub(const LiveOptions& options)
+      : rig(sim::ClubRig(1, 1280, 720, false)), hub(rig, {"A", "B"}, options), image(1280, 720) {
+    set.images = {image.View()};
+    result.searches.resize(1);
+  }
+  void Push(double t, std::span<const game::Event> events = {}) {
+    set.t = FromSeconds(t);
+    hub.OnFrameSet(set, result, events, nullptr);
+  }
+  Rig rig;
+  LiveHub hub;
+  I420Image image;
+  FrameSet set;
+  track::FrameSetResult result;
+};
+
 TEST(LiveHub, TakesPicturesAtItsOwnRate) {
-  const Rig rig = sim::ClubRig(1, 1280, 720, false);
   LiveOptions options;
   options.frame_hz = 10.0;
-  LiveHub hub(rig, {"A", "B"}, options);
-  I420Image image(1280, 720);
-  FrameSet set;
-  set.images = {image.View()};
-  track::FrameSetResult result;
-  result.searches.resize(1);
-  for (int i = 0; i < 240; ++i) {  // 2 s at 120 fps
-    set.t = FromSeconds(i / 120.0);
-    hub.OnFrameSet(set, result, {}, nullptr);
+  OneCameraHub one(options);
+  for (int i = 0; i < 240; ++i) one.Push(i / 120.0);  // 2 s at 120 fps
+  EXPECT_LE(one.hub.frames_offered() + one.hub.frames_dropped(), 21);
+  EXPECT_GE(one.hub.frames_offered(), 1);
+}
+
+// The state keeps the last `events` events, each numbered in the run: a client that polls
+// slowly can tell how many it missed.
+TEST(LiveHub, NumbersTheEventsItKeeps) {
+  LiveOptions options;
+  options.events = 4;
+  OneCameraHub one(options);
+  for (int i = 0; i < 3; ++i) {
+    std::vector<game::Event> events(3);
+    for (game::Event& e : events) e.type = "bounce", e.t = 1.0 + i;
+    one.Push(1.0 + i, events);
   }
-  EXPECT_LE(hub.frames_offered() + hub.frames_dropped(), 21);
-  EXPECT_GE(hub.frames_offered(), 1);
+  const auto state = nlohmann::json::parse(*one.hub.State());
+  ASSERT_EQ(state["events"].size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(state["events"][k]["n"].get<int>(), 6 + k);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ Eigen::Matrix<T, 3, 1> MidpointStep(Eigen::Matrix<T, 3, 1>* p, Eigen::Matrix<T, 
     a.z() -= T(gravity);
     return a;
   };
-  const Vec3 v_mid = *v + T(0.5) * h * accel(*v);
+  Vec3 v_mid = *v + T(0.5) * h * accel(*v);  // returned: not const (moved)
   const Vec3 a = accel(v_mid);
   *p = *p + h * *v + T(0.5) * h * h * a;
   *v = *v + h * a;

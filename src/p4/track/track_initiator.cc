@@ -12,9 +12,10 @@ namespace p4::track {
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
   if (confirm_points < 2 || !(min_travel >= 0.0) || !(min_travel_speed >= 0.0) || !(gate > 0.0) ||
       !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) || !(fall_span_s > 0.0) ||
-      !(fall_tolerance > 0.0) || !(fit_tolerance > 0.0) || !(fit_sigmas >= 0.0) ||
-      !(max_span_s > max_gap_s) || !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 ||
-      min_confirm_points < 2 || min_confirm_points > confirm_points || !(confirm_span_s > 0.0)) {
+      !(fall_tolerance > 0.0) || fall_points < 4 || !(fit_tolerance > 0.0) ||
+      !(fit_sigmas >= 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) ||
+      max_tracklets < 1 || max_missed < 0 || min_confirm_points < 2 ||
+      min_confirm_points > confirm_points || !(confirm_span_s > 0.0)) {
     if (error) {
       *error =
           "track initiator: need 2 <= min_confirm_points <= confirm_points, positive gate, gap, "
@@ -108,7 +109,7 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
     return true;
   }
   // Falling: z = a + b t + c t^2 by least squares, c against -g/2.
-  if (span < options_.fall_span_s) return false;
+  if (span < options_.fall_span_s || n < options_.fall_points) return false;
   Eigen::MatrixXd a(points.size(), 3);
   Eigen::VectorXd z(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -124,7 +125,13 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
 
 std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletPoint> candidates) {
   // Tracklets that waited too long end; points too old slide out.
-  const TimeNs max_gap = FromSeconds(options_.max_gap_s);
+  // The time-stamps' period, the shortest interval pushed: at 30 fps or slower max_missed
+  // frames take longer than max_gap_s, and the count of time-stamps is what bounds the gap.
+  if (last_t_ && (period_ == 0 || t - *last_t_ < period_)) period_ = t - *last_t_;
+  last_t_ = t;
+  const TimeNs max_gap =
+      std::max(FromSeconds(options_.max_gap_s),
+               static_cast<TimeNs>(static_cast<double>(period_) * (options_.max_missed + 1.5)));
   const TimeNs max_span = FromSeconds(options_.max_span_s);
   const int64_t stamp = ++stamps_;
   std::erase_if(tracklets_, [&](const Tracklet& k) {

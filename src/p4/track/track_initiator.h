@@ -9,8 +9,8 @@
 // measurements' own noise. A tracklet is confirmed, and may start the filter's track, once it
 // has confirm_points points in a row and has travelled min_travel: the ball in play moves, the
 // hall does not. Points older than max_span_s slide out (a static spot never confirms however
-// long it stays); a tracklet not extended for max_gap_s ends. A slow ball confirms by falling
-// with gravity's curvature instead (a toss near its top).
+// long it stays); a tracklet not extended for max_missed time-stamps ends. A slow ball confirms by
+// falling with gravity's curvature instead (a toss near its top).
 //
 // World frame, metres, seconds (time-stamps in ns from the caller). Pure.
 #pragma once
@@ -39,9 +39,13 @@ struct TrackInitiatorOptions {
   double min_travel_speed = 1.5;
   // A slow ball (a serve toss near its top) travels less, but falls as nothing else in the hall
   // does: a tracklet spanning fall_span_s whose heights fit a parabola with gravity's curvature
-  // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) is confirmed too.
+  // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) and has
+  // fall_points points at least is confirmed too: a parabola has 3 parameters, and through 4
+  // points of a hand or a shirt's edge (a 25 fps camera's 0.1 s) one with g's curvature is found
+  // by chance.
   double fall_span_s = 0.1;
   double fall_tolerance = 0.3;
+  int fall_points = 6;
   // The newest confirm_points must fit one flight (gravity and drag, no spin, no bounce) within
   // this RMS (m) plus fit_sigmas of the measurements: the gate below, from two points, is wide
   // when they are 40 ms apart (a still speck paired with a moving one flies along a ray).
@@ -49,12 +53,14 @@ struct TrackInitiatorOptions {
   double fit_sigmas = 1.5;
   double gate = 0.03;        // m of model error (spin, a bounce's start) in the prediction...
   double gate_sigmas = 4.0;  // ...plus this many sigmas of the measurements and the velocity
-  double max_gap_s = 0.07;   // a tracklet not extended this long ends...
-  int max_missed = 1;        // ...or for more time-stamps than this (the ball is seen in almost
-                             // every frame; a flicker of the hall is not)
-  double max_span_s = 0.25;  // points older than this slide out
-  double max_speed = 45.0;   // m/s; a second point farther than this from the first is not it
-  double gravity = 9.81;     // m/s^2
+  // A tracklet not extended for more than max_missed time-stamps ends (the ball is seen in
+  // almost every frame; a flicker of the hall is not), and one not extended for max_gap_s, or
+  // for max_missed + 1.5 periods of the time-stamps where that is longer (30 fps or slower).
+  double max_gap_s = 0.07;
+  int max_missed = 1;
+  double max_span_s = 0.25;       // points older than this slide out
+  double max_speed = 45.0;        // m/s; a second point farther than this from the first is not it
+  double gravity = 9.81;          // m/s^2
   double drag_per_mass = 0.1407;  // 1/m, as the filter's
   int max_tracklets = 64;         // the youngest are dropped beyond this
 
@@ -96,6 +102,8 @@ class TrackInitiator {
   TrackInitiatorOptions options_;
   std::vector<Tracklet> tracklets_;
   int64_t stamps_ = 0;  // time-stamps pushed
+  std::optional<TimeNs> last_t_;
+  TimeNs period_ = 0;  // the shortest interval between two pushes (0: fewer than two)
 };
 
 }  // namespace p4::track

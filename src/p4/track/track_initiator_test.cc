@@ -172,6 +172,46 @@ TEST(TrackInitiator, ThreeStreaksOfAWebcamConfirmAFlightThreePlainPointsDoNot) {
   EXPECT_TRUE(confirmed.has_value());
 }
 
+// A webcam that misses the ball in one frame: 80 ms between two points at 25 fps, longer than
+// max_gap_s (70 ms); the gap is counted in the sets' own period, so the tracklet waits for one
+// missed set (and no more) whatever the rate.
+TEST(TrackInitiator, AWebcamThatMissesOneFrameKeepsItsTracklet) {
+  for (const int missed : {1, 2}) {
+    std::mt19937 rng(5);
+    TrackInitiator initiator;
+    std::optional<Tracklet> confirmed;
+    const std::vector<TrackletPoint> points = WebcamPoints(4 + missed, false, &rng);
+    for (int k = 0; k < static_cast<int>(points.size()); ++k) {
+      const bool seen = k < 2 || k >= 2 + missed;  // frames 2.. missed
+      confirmed = initiator.Push(
+          points[k].t, seen ? std::vector<TrackletPoint>{points[k]} : std::vector<TrackletPoint>{});
+    }
+    EXPECT_EQ(confirmed.has_value(), missed == 1) << missed << " frame(s) missed";
+  }
+}
+
+// A toss at 25 fps near its top travels little: its fall confirms it, but only from 6 points (a
+// parabola's 3 parameters and 3 more): through 4 points of a hand or a shirt's edge a parabola
+// with g's curvature is found by chance (two time-stamps of a 25 fps camera take 0.12 s).
+TEST(TrackInitiator, ASlowTossAt25FpsIsConfirmedByItsFallFromItsSixthPoint) {
+  TrackInitiator initiator;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  std::optional<int> confirmed_at;
+  for (int k = 0; k < 12 && !confirmed_at; ++k) {
+    const double t = (k - 3) / 25.0;  // the top at k = 3
+    TrackletPoint p;
+    p.t = FromSeconds(k / 25.0);
+    p.measurement.position =
+        Eigen::Vector3d(-2.3 + noise(rng), 0.1 + noise(rng), 0.4 - 4.9 * t * t + noise(rng));
+    p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
+    p.detections = {1};
+    if (initiator.Push(p.t, std::vector<TrackletPoint>{p})) confirmed_at = k;
+  }
+  ASSERT_TRUE(confirmed_at.has_value());
+  EXPECT_EQ(*confirmed_at, 5);  // its sixth point (it has fallen 8 cm by then: no travel yet)
+}
+
 TEST(TrackInitiator, AJerkyPathFitsNoFlight) {
   // At 25 sets per second, 1 cm of noise: a speck on a player that jumps on, stops and jumps
   // again, at a constant height. Each point lies within the wide gate of the two before it, and
