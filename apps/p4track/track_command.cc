@@ -141,6 +141,20 @@ Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
   return found.rig;
 }
 
+// Why a run with these options cannot be made again by --resume (empty: it can): only runs over
+// files that did not loop can.
+std::string WhyNotResumable(const TrackArgs& a) {
+  for (const auto& s : a.sources) {
+    if (VideoReader::IsLive(s)) {
+      return "the run read " + s +
+             ", a live source: only runs over files can be resumed (a live picture cannot be "
+             "made again)";
+    }
+  }
+  if (a.loop) return "the run played its files in a loop: it has no end to resume";
+  return {};
+}
+
 int Run(TrackArgs a) {
   const bool resume = !a.resume.empty();
   if (resume) {
@@ -150,15 +164,7 @@ int Run(TrackArgs a) {
       spdlog::info("{}: the run finished; nothing to resume", a.out);
       return 0;
     }
-    for (const auto& s : a.sources) {
-      if (VideoReader::IsLive(s)) {
-        throw Error(a.out + ": the run read " + s +
-                    ", a live source: only runs over files can "
-                    "be resumed (a live picture cannot be made again)");
-      }
-    }
-    if (a.loop)
-      throw Error(a.out + ": the run played its files in a loop: it has no end to resume");
+    if (const std::string why = WhyNotResumable(a); !why.empty()) throw Error(a.out + ": " + why);
     a.realtime = a.ui = false;
     spdlog::info(
         "resuming {}: the run is made again from its start with its own options (run.json); "
@@ -296,12 +302,10 @@ int Run(TrackArgs a) {
                  a.out);
   }
   if (summary.stopped) {
-    // Only a run of files that did not loop can be made again (--resume).
-    const bool resumable =
-        !a.loop && std::none_of(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
     spdlog::info("stopped by Ctrl-C; the run's files are complete{}",
-                 resumable ? fmt::format(" (continue with: p4track track --resume {})", a.out)
-                           : std::string());
+                 WhyNotResumable(a).empty()
+                     ? fmt::format(" (continue with: p4track track --resume {})", a.out)
+                     : std::string());
   } else {
     WriteRunJson(a, true);
   }

@@ -18,7 +18,7 @@
 import os from 'node:os';
 import { readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage } from '../tests/support.mjs';
+import { tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, pollLikeThePage } from '../tests/support.mjs';
 
 const minutes = Number(process.env.SOAK_MINUTES || 30);
 const nClients = Number(process.env.SOAK_CLIENTS || 20);
@@ -78,30 +78,16 @@ try {
   if (os.getPriority() < 19) os.setPriority(19);
 
   let stopClients = false;
-  let requests = 0, failed = 0;
+  const counts = { requests: 0, failed: 0 };
   const seen = [];  // per client: event numbers seen
-  const poller = async c => {
+  const poller = () => {
     const numbers = new Set();
     seen.push(numbers);
-    let k = 0;
-    while (!stopClients) {
-      const pictures = k++ % 2 === 0;
-      const urls = pictures ? [0, 1, 2].map(i => `${run.url}api/live/camera/${i}.jpg`) : [];
-      const state = fetch(`${run.url}api/live/state`, { cache: 'no-store' }).then(async r => {
-        ++requests;
-        if (r.status === 200) for (const e of (await r.json()).events) numbers.add(e.n);
-        else if (r.status !== 204) ++failed;
-      });
-      const rest = urls.map(u => fetch(u).then(r => r.arrayBuffer().then(() => {
-        ++requests;
-        if (r.status !== 200 && r.status !== 204 && r.status !== 404) ++failed;
-      })));
-      await Promise.all([state, ...rest]).catch(() => { ++failed; });
-      await new Promise(r => setTimeout(r, 50));
-    }
+    return pollLikeThePage(run.url, 3, () => stopClients, counts,
+      state => { for (const e of state.events) numbers.add(e.n); });
   };
   const clients = [];
-  for (let c = withPage ? 1 : 0; c < nClients; ++c) clients.push(poller(c));
+  for (let c = withPage ? 1 : 0; c < nClients; ++c) clients.push(poller());
 
   // The real page: the live view as a user opens it.
   const pageErrors = [];
@@ -120,7 +106,7 @@ try {
       const t = (Date.now() - start) / 60e3;
       memory.push({ minute: Number(t.toFixed(2)), rss_mb: Number(rssMb(pid).toFixed(1)) });
       const states = page ? await page.evaluate(() => window.p4live.states).catch(() => -1) : '-';
-      log(`minute ${t.toFixed(1)}: rss ${memory.at(-1).rss_mb} MB, ${requests} requests (${failed} failed), page states ${states}`);
+      log(`minute ${t.toFixed(1)}: rss ${memory.at(-1).rss_mb} MB, ${counts.requests} requests (${counts.failed} failed), page states ${states}`);
       nextSample += 30e3;
     }
     const events = page ? await page.evaluate(() => (window.p4live.state ? window.p4live.state.events.map(e => e.n) : [])).catch(() => []) : [];
@@ -152,7 +138,7 @@ try {
   Object.assign(result, {
     exit_code: code, frame_sets: sets, worst_lag_ms: lag, late_frame_sets: late,
     events_written: written, events_seen_per_client_min: Math.min(...seen.map(s => s.size)),
-    lost_events_per_client: lost, requests, failed_requests: failed, page_errors: pageErrors,
+    lost_events_per_client: lost, requests: counts.requests, failed_requests: counts.failed, page_errors: pageErrors,
     memory, rss_growth_mb: Number((peak - base).toFixed(1)),
   });
   writeFileSync(outFile, JSON.stringify(result, null, 2) + '\n');
@@ -161,9 +147,9 @@ try {
   console.log(`soak ${minutes} min, ${nClients} clients (${result.machine}): ${sets} frame sets, ` +
     `${late} late (worst lag ${lag} ms); memory ${memory[0].rss_mb} MB at start, ${base} MB at minute ` +
     `${warm.length ? warm[0].minute : 0}, peak ${peak} MB after (growth ${(peak - base).toFixed(1)} MB); ` +
-    `${written} events written, ${lostTotal} lost by the clients; ${requests} requests, ${failed} failed; ` +
+    `${written} events written, ${lostTotal} lost by the clients; ${counts.requests} requests, ${counts.failed} failed; ` +
     `${pageErrors.length} page errors; exit ${code}. Wrote ${outFile}`);
-  const ok = code === 0 && growthOk && late === 0 && lostTotal === 0 && failed === 0 && pageErrors.length === 0;
+  const ok = code === 0 && growthOk && late === 0 && lostTotal === 0 && counts.failed === 0 && pageErrors.length === 0;
   if (!ok) {
     console.log('soak: a target was missed (memory flat, 0 late frame sets, 0 lost events, 0 failures)');
     process.exitCode = 1;

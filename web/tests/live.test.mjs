@@ -4,7 +4,7 @@
 // as the page does, tracking still keeps real time (no frame set later than 3 frame periods).
 import os from 'node:os';
 import { join } from 'node:path';
-import { check, tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, ARTIFACTS, HANG_MS } from './support.mjs';
+import { check, tempDir, removeDir, p4track, startServing, stop, launchBrowser, openPage, pollLikeThePage, ARTIFACTS, HANG_MS } from './support.mjs';
 
 const dir = tempDir('live');
 let server, browser;
@@ -51,24 +51,14 @@ try {
   //    real time. The clients stand for tablets and laptops around the table: on this machine they
   //    run at the lowest priority (p4track, started first, keeps its). The run loops until the
   //    clients have made 1,000 requests, however long that takes here, then Ctrl-C ends it.
-  let requests = 0;
+  const counts = { requests: 0, failed: 0 };
   const watched = async (n, out, extra) => {
     const run = await startServing([...track(out), '--ui', '--loop', ...extra], 'live view');
     if (os.getPriority() < 19) os.setPriority(19);
     let stopClients = false;
-    for (let c = 0; c < n; ++c) {
-      clients.push((async () => {
-        let k = 0;
-        while (!stopClients) {
-          const urls = [`${run.url}api/live/state`];
-          if (k++ % 2 === 0) urls.push(`${run.url}api/live/camera/0.jpg`, `${run.url}api/live/camera/1.jpg`);
-          await Promise.all(urls.map(u => fetch(u).then(r => r.arrayBuffer()).then(() => ++requests).catch(() => {})));
-          await new Promise(r => setTimeout(r, 50));
-        }
-      })());
-    }
+    for (let c = 0; c < n; ++c) clients.push(pollLikeThePage(run.url, 2, () => stopClients, counts));
     const deadline = Date.now() + HANG_MS;
-    while (requests < 1000 && Date.now() < deadline) await new Promise(r => setTimeout(r, 100));
+    while (counts.requests < 1000 && Date.now() < deadline) await new Promise(r => setTimeout(r, 100));
     stopClients = true;
     await Promise.all(clients.splice(0));
     const code = await stop(run.proc);
@@ -79,7 +69,7 @@ try {
   const [, sets] = /(\d+) frame sets \(/.exec(live).map(Number);
   const [, lag, late] = /worst lag ([\d.]+) ms, (\d+) frame sets late/.exec(live).map(Number);
   console.log(`real time with 20 clients: ${sets} frame sets, worst lag ${lag} ms, ${late} late`);
-  check(requests >= 1000, `the 20 clients were served (${requests} requests)`);
+  check(counts.requests >= 1000, `the 20 clients were served (${counts.requests} requests)`);
   check(late <= 0.01 * sets, `20 clients: tracking keeps real time (${late} of ${sets} frame sets late)`);
 } finally {
   if (browser) await browser.close();

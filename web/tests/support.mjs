@@ -66,3 +66,26 @@ export async function openPage(browser, url, errors) {
   await page.goto(url);
   return page;
 }
+
+// An HTTP client polling the live view as its page does, until stop() is true: the state every
+// 50 ms, every camera's picture every other time. counts.requests grows with every answer,
+// counts.failed with every request unanswered or answered otherwise than 200 or 204 ("no state
+// yet"; a picture also 404, "none yet"); each state goes to onState, when given.
+export async function pollLikeThePage(url, cameras, stop, counts, onState) {
+  const get = (path, ok, read) => fetch(`${url}${path}`, { cache: 'no-store' }).then(async r => {
+    ++counts.requests;
+    if (!ok.includes(r.status)) ++counts.failed;
+    await read(r);
+  }).catch(() => { ++counts.failed; });
+  for (let k = 0; !stop(); ++k) {
+    const requests = [get('api/live/state', [200, 204], async r => {
+      if (r.status === 200 && onState) onState(await r.json());
+      else await r.arrayBuffer();
+    })];
+    if (k % 2 === 0) {
+      for (let i = 0; i < cameras; ++i) requests.push(get(`api/live/camera/${i}.jpg`, [200, 204, 404], r => r.arrayBuffer()));
+    }
+    await Promise.all(requests);
+    await new Promise(r => setTimeout(r, 50));
+  }
+}

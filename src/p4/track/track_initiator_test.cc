@@ -14,14 +14,20 @@ namespace {
 
 constexpr double kRate = 120.0;
 
-TrackletPoint Point(int k, const Eigen::Vector3d& p, int detection) {
+// A 3D candidate at t_s seconds, measured with `sigma` (m) on each axis.
+TrackletPoint PointAt(double t_s, const Eigen::Vector3d& p, double sigma, int detection) {
   TrackletPoint out;
-  out.t = FromSeconds(k / kRate);
+  out.t = FromSeconds(t_s);
   out.measurement.position = p;
-  out.measurement.covariance = 0.002 * 0.002 * Eigen::Matrix3d::Identity();
+  out.measurement.covariance = sigma * sigma * Eigen::Matrix3d::Identity();
   out.measurement.cameras = 2;
   out.detections = {detection};
   return out;
+}
+
+// The k-th set at 120 per second, 2 mm of noise.
+TrackletPoint Point(int k, const Eigen::Vector3d& p, int detection) {
+  return PointAt(k / kRate, p, 0.002, detection);
 }
 
 // A drive at 8 m/s, rising and falling, measured with 2 mm of noise.
@@ -138,12 +144,10 @@ std::vector<TrackletPoint> WebcamPoints(int n, bool streak, std::mt19937* rng) {
   std::vector<TrackletPoint> out;
   for (int k = 0; k < n; ++k) {
     const double t = k / 25.0;
-    TrackletPoint p;
-    p.t = FromSeconds(t);
-    p.measurement.position = Eigen::Vector3d(-1.2 + 8.0 * t + noise(*rng), 0.1 + noise(*rng),
-                                             0.2 + 1.5 * t - 4.9 * t * t + noise(*rng));
-    p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
-    p.detections = {1};
+    TrackletPoint p = PointAt(t,
+                              Eigen::Vector3d(-1.2 + 8.0 * t + noise(*rng), 0.1 + noise(*rng),
+                                              0.2 + 1.5 * t - 4.9 * t * t + noise(*rng)),
+                              0.01, 1);
     p.streak = streak;
     out.push_back(p);
   }
@@ -200,12 +204,10 @@ TEST(TrackInitiator, ASlowTossAt25FpsIsConfirmedByItsFallFromItsSixthPoint) {
   std::optional<int> confirmed_at;
   for (int k = 0; k < 12 && !confirmed_at; ++k) {
     const double t = (k - 3) / 25.0;  // the top at k = 3
-    TrackletPoint p;
-    p.t = FromSeconds(k / 25.0);
-    p.measurement.position =
-        Eigen::Vector3d(-2.3 + noise(rng), 0.1 + noise(rng), 0.4 - 4.9 * t * t + noise(rng));
-    p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
-    p.detections = {1};
+    const TrackletPoint p = PointAt(
+        k / 25.0,
+        Eigen::Vector3d(-2.3 + noise(rng), 0.1 + noise(rng), 0.4 - 4.9 * t * t + noise(rng)), 0.01,
+        1);
     if (initiator.Push(p.t, std::vector<TrackletPoint>{p})) confirmed_at = k;
   }
   ASSERT_TRUE(confirmed_at.has_value());
@@ -224,11 +226,7 @@ TEST(TrackInitiator, AJerkyPathFitsNoFlight) {
     std::optional<Tracklet> confirmed;
     const double ys[] = {0.0, 0.10, 0.095, 0.215};
     for (int k = 0; k < 4; ++k) {
-      TrackletPoint p;
-      p.t = FromSeconds(k * 0.04);
-      p.measurement.position = Eigen::Vector3d(-2.3, ys[k], 0.4);
-      p.measurement.covariance = 0.01 * 0.01 * Eigen::Matrix3d::Identity();
-      p.detections = {1};
+      const TrackletPoint p = PointAt(k * 0.04, Eigen::Vector3d(-2.3, ys[k], 0.4), 0.01, 1);
       confirmed = initiator.Push(p.t, std::vector<TrackletPoint>{p});
     }
     EXPECT_EQ(confirmed.has_value(), !fit) << (fit ? "with" : "without") << " the flight fit";
