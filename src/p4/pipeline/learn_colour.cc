@@ -57,7 +57,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
         r.measurement->cameras < 2) {
       continue;
     }
-    if (!r.revisions.empty()) new_track = true;  // a tracklet confirmed: a new track
+    if (r.new_track) new_track = true;  // a tracklet confirmed
     // Over the table and above it, where the ball in play flies and the players' shoes, legs
     // and bodies do not; and flying (a track that has come to rest on two things that happen to
     // meet across the views is not the ball).

@@ -49,10 +49,10 @@ void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const Track
   }
   // Reflect at the table (restitution and friction), with more uncertainty for the spin.
   const Matrix6d d = BounceMatrix(at, o.bounce_restitution, o.bounce_friction);
-  filter->mutable_state() = d * filter->state();
-  filter->mutable_covariance() = d * filter->covariance() * d.transpose();
   // Spin and friction change the velocity at the bounce in ways the model does not know.
-  filter->mutable_covariance().diagonal().tail<3>() += Eigen::Vector3d(1.5, 1.0, 1.0).cwiseAbs2();
+  Matrix6d spin = Matrix6d::Zero();
+  spin.diagonal().tail<3>() = Eigen::Vector3d(1.5, 1.0, 1.0).cwiseAbs2();
+  filter->Apply(d, spin);
   filter->Predict(std::max(dt - hit, 1e-9));
 }
 
@@ -68,11 +68,32 @@ void BallTracker::Start(TimeNs t, const Measurement& m, const Velocity& velocity
 
 void BallTracker::Began(TimeNs t) {
   tracking_ = true;
-  last_t_ = last_update_t_ = t;
+  last_t_ = last_update_t_ = last_fix_t_ = t;
   last_position_ = filter_.state().head<3>();
   pending_.reset();
   recent_.clear();
   ++restarts_;
+  Record(t, nullptr);
+}
+
+void BallTracker::Record(TimeNs t, const KalmanFilter* prior, double innovation_chi2) {
+  if (!(options_.history_s > 0.0)) return;
+  FilterStep step;
+  step.t = t;
+  step.state = filter_.state();
+  step.covariance = filter_.covariance();
+  step.start = prior == nullptr;
+  step.innovation_chi2 = innovation_chi2;
+  if (prior) {
+    step.prior_state = prior->state();
+    step.prior_covariance = prior->covariance();
+    step.transition = prior->transition();
+  } else {
+    step.prior_state = step.state;
+    step.prior_covariance = step.covariance;
+  }
+  history_.push_back(step);
+  while (t - history_.front().t > FromSeconds(options_.history_s)) history_.pop_front();
 }
 
 std::optional<BallTracker::Velocity> BallTracker::PendingVelocity(TimeNs t,
@@ -119,10 +140,16 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
     }
     used = true;
   } else {
+    filter_.ResetTransition();
     PredictWithBounce(&filter_, ToSeconds(t - last_t_), options_);
+    const KalmanFilter prior = filter_;
+    const int restarts = restarts_;
     last_t_ = t;
+    double innovation_chi2 = 0.0;
     if (m) {
-      if (filter_.Mahalanobis2(m->position, m->covariance) <= options_.gate_chi2) {
+      const double d2 = filter_.Mahalanobis2(m->position, m->covariance);
+      if (d2 <= options_.gate_chi2) {
+        innovation_chi2 = d2;
         filter_.Update(m->position, m->covariance);
         last_update_t_ = t;
         last_position_ = filter_.state().head<3>();
@@ -151,7 +178,9 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
         }
       }
     }
-    if (!used && ToSeconds(t - last_update_t_) > options_.max_coast_s) {
+    if (restarts == restarts_) Record(t, &prior, innovation_chi2);  // a restart recorded itself
+    if (used && (m->cameras >= 2 || options_.one_view_holds_track)) last_fix_t_ = t;
+    if (ToSeconds(t - last_fix_t_) > options_.max_coast_s) {
       tracking_ = false;
       return std::nullopt;
     }

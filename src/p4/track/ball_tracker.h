@@ -17,6 +17,7 @@
 
 #include "p4/core/time.h"
 #include "p4/track/kalman_filter.h"
+#include "p4/track/rts_smoother.h"
 
 namespace p4::track {
 
@@ -41,8 +42,12 @@ struct TrackerOptions {
   KalmanOptions kalman;
   double gate_chi2 = 30.0;    // squared Mahalanobis distance that a measurement must pass
   double max_coast_s = 0.15;  // longest prediction without measurements before the track ends
-  double max_speed = 45.0;    // m/s; a restart implying more is refused
-  bool bounce_model = true;   // reflect at the table in the prediction
+  // Whether a measurement of one camera (Measurement::cameras 1) counts for max_coast_s. Off in a
+  // rig of several cameras: a lone view corrects the filter across its ray, but views of one
+  // camera alone cannot hold a track whose depth grows loose (FrameSetTracker).
+  bool one_view_holds_track = true;
+  double max_speed = 45.0;   // m/s; a restart implying more is refused
+  bool bounce_model = true;  // reflect at the table in the prediction
   double bounce_restitution = 0.88;
   double bounce_friction = 0.25;
   double ball_radius = 0.02;
@@ -62,6 +67,8 @@ struct TrackerOptions {
   double slow_window_s = 0.2;  // s
   double fall_share = 0.5;     // of gravity
   double slow_fit_rms = 0.01;  // m
+  // The filter's steps kept for a smoother (history()): those of the last history_s. 0: none.
+  double history_s = 0.0;
 
   bool IsValid(std::string* error) const;
 };
@@ -80,6 +87,10 @@ class BallTracker {
   // The predicted velocity at t (m/s, world frame), with a track.
   std::optional<Eigen::Vector3d> PredictVelocity(TimeNs t) const;
 
+  // The filter's steps of the last history_s, oldest first (rts_smoother.h): each time-stamp
+  // the track went through, a start at each (re)start.
+  const std::deque<FilterStep>& history() const { return history_; }
+
   bool tracking() const { return tracking_; }
   int restarts() const { return restarts_; }
 
@@ -97,6 +108,8 @@ class BallTracker {
   };
   void Start(TimeNs t, const Measurement& m, const Velocity& velocity);
   void Began(TimeNs t);
+  // Keeps the step to t in the history: from the prior given (nullptr: a start).
+  void Record(TimeNs t, const KalmanFilter* prior, double innovation_chi2 = 0.0);
   // The velocity from the measurement kept in pending_ to m, if recent (50 ms) and plausible,
   // with the covariance of the difference: a one-camera pair knows little along the rays.
   std::optional<Velocity> PendingVelocity(TimeNs t, const Measurement& m) const;
@@ -106,11 +119,13 @@ class BallTracker {
   bool tracking_ = false;
   TimeNs last_t_ = 0;
   TimeNs last_update_t_ = 0;
+  TimeNs last_fix_t_ = 0;  // the last measurement that holds the track (one_view_holds_track)
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
   std::optional<std::pair<TimeNs, Measurement>> pending_;    // a measurement the gate refused
   // The measurements the filter took over the last slow_window_s (time, position).
   std::deque<std::pair<TimeNs, Eigen::Vector3d>> recent_;
   int restarts_ = 0;
+  std::deque<FilterStep> history_;
 };
 
 }  // namespace p4::track

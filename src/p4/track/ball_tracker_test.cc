@@ -164,6 +164,46 @@ TEST(BallTracker, TheTrackEndsAfterTheCoastTime) {
   EXPECT_FALSE(tracker.PredictPosition(FromSeconds(1.0)).has_value());
 }
 
+// In a rig of several cameras one camera's views correct the filter but do not hold the track:
+// after max_coast_s with views of one camera only it ends, as without any (one_view_holds_track
+// off); with it on (a one-camera rig) they hold it as long as they come. Every step is kept in
+// the history for the smoother.
+TEST(BallTracker, ViewsOfOneCameraHoldATrackOnlyWhenAskedTo) {
+  for (const bool holds : {false, true}) {
+    TrackerOptions options;
+    options.one_view_holds_track = holds;
+    options.history_s = 1.0;
+    BallTracker tracker(options);
+    const double dt = 1.0 / 60.0;
+    const auto at = [](int k) { return Eigen::Vector3d(-1.0 + 0.1 * k, 0.0, 0.3); };
+    for (int k = 0; k < 10; ++k)
+      ASSERT_TRUE(tracker.Step(FromSeconds(k * dt), Measure(at(k), 0.002)));
+    int lone_steps = 0;
+    for (int k = 10; k < 40; ++k) {
+      Measurement lone = Measure(at(k), 0.002);
+      lone.cameras = 1;
+      const auto state = tracker.Step(FromSeconds(k * dt), lone);
+      if (!state) break;
+      EXPECT_TRUE(state->measured) << k;
+      ++lone_steps;
+    }
+    if (holds) {
+      EXPECT_EQ(lone_steps, 30);
+    } else {
+      EXPECT_NEAR(lone_steps, 0.15 / dt, 1.0);
+    }
+    // One start (the second measurement) and every step after it, within history_s.
+    const auto& history = tracker.history();
+    ASSERT_FALSE(history.empty());
+    EXPECT_TRUE(history.front().start);
+    EXPECT_EQ(history.back().t, FromSeconds((9 + lone_steps + (holds ? 0 : 1)) * dt));
+    for (std::size_t i = 1; i < history.size(); ++i) {
+      EXPECT_FALSE(history[i].start);
+      EXPECT_NEAR(ToSeconds(history[i].t - history[i - 1].t), dt, 1e-8);
+    }
+  }
+}
+
 TEST(BallTracker, AnOutlierIsGatedOut) {
   BallTracker tracker;
   const double dt = 1.0 / 120.0;

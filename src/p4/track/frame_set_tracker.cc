@@ -1,5 +1,6 @@
 #include "p4/track/frame_set_tracker.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -9,6 +10,7 @@
 #include "p4/geometry/triangulation.h"
 #include "p4/segment/ball_edge.h"
 #include "p4/segment/ball_measure.h"
+#include "p4/track/rts_smoother.h"
 
 namespace p4::track {
 
@@ -32,6 +34,16 @@ bool FrameSetOptions::IsValid(std::string* error) const {
   }
   if (!(streak_min_frame_s > 0.0)) {
     if (error) *error = "streak_min_frame_s must be positive";
+    return false;
+  }
+  if (!(single_view_depth_sigma > 0.0) || !(single_view_max_depth_sigma > 0.0) ||
+      !(lone_view_depth_sigma >= 0.0) || !(lone_view_gate_chi2 > 0.0) ||
+      !(lone_view_image_sigma > 0.0) || !(lone_view_consistency_chi2 > 0.0)) {
+    if (error) {
+      *error =
+          "single_view_depth_sigma, single_view_max_depth_sigma and the lone views' gates "
+          "must be positive, lone_view_depth_sigma at least 0";
+    }
     return false;
   }
   if (threads < 1 || threads > 64) {
@@ -60,7 +72,14 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       tracker_options_(options.tracker),
       initiator_(options.initiator) {
   // New tracks come from the initiator: a refused measurement must not restart the filter.
-  if (options.confirm_tracks && rig.size() >= 2) tracker_options_.restart_on_refusal = false;
+  if (options.confirm_tracks && rig.size() >= 2) {
+    tracker_options_.restart_on_refusal = false;
+    tracker_options_.one_view_holds_track = false;
+    // The lone views' rows wait as long as the hold (the initiator's span): so do the steps.
+    if (options.lone_view_depth_sigma > 0.0) {
+      tracker_options_.history_s = options.initiator.max_span_s;
+    }
+  }
   tracker_ = BallTracker(tracker_options_);
   options_.segment.mask = classes.MaskOf("ball");
   if (options.threads > 1 && rig.size() > 1) {
@@ -440,10 +459,30 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     result.measurement = ToMeasurement(*best);
     used = best->members;
   }
-  // One view places the ball by its diameter: in a one-camera rig always; with more cameras only
-  // to continue a track (a lone view of an orange speck must not start one).
-  if (!result.measurement && options_.single_camera_fallback && (n == 1 || predicted)) {
-    result.measurement = SingleView(candidates, predicted, predicted_covariance, &used);
+  // One view places the ball by its diameter in a one-camera rig; with more cameras it only
+  // continues a track (a lone view of an orange speck must not start one), at the predicted depth.
+  std::optional<WaitingView> waits;
+  if (!result.measurement && options_.single_camera_fallback) {
+    if (n == 1) {
+      result.measurement = SingleView(candidates, predicted, &used);
+    } else if (predicted) {
+      if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance)) {
+        // A lone view whose depth the filter knows is a row at once; with the rows held
+        // (confirming), every lone view waits for the fixes after it (PlaceLoneViews): from
+        // the past alone its depth is an extrapolation.
+        const bool firm = lone->depth_sigma <= options_.single_view_max_depth_sigma;
+        const bool held = confirming && options_.lone_view_depth_sigma > 0.0;
+        if (held && lone->depth_sigma <= std::max(options_.lone_view_depth_sigma,
+                                                  options_.single_view_max_depth_sigma)) {
+          const auto [c, k] = lone->id;
+          waits = WaitingView{t, c, candidates[c][k].pixel, lone->ray, offset[c] + k};
+        }
+        if (waits || (firm && !held)) {
+          result.measurement = lone->measurement;
+          used = {lone->id};
+        }
+      }
+    }
   }
   const TimeNs t2 = clock_ ? clock_() : 0;
   // With confirmation a track starts only from the initiator (below), never from this step.
@@ -464,14 +503,25 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     } else if (!took) {
       result.tentative = result.measurement.has_value();
       used.clear();
+    } else if (waits) {
+      // The filter took a lone view whose depth it does not know yet: the row waits.
+      result.tentative = true;
+      used.clear();
+      waiting_.push_back(*waits);
     }
   }
-  if (result.state && result.state->measured) last_taken_t_ = t;
+  if (result.state && result.state->measured) {
+    last_taken_t_ = t;
+    if (!result.tentative && result.measurement && result.measurement->cameras >= 2) {
+      fixes_.push_back(t);
+    }
+  }
   for (const auto& [c, k] : used) candidates[c][k].accepted = true;
   for (auto& list : candidates) {
     for (auto& d : list) result.detections.push_back(d);
   }
   for (int i : adopted) result.detections[i].accepted = true;
+  PlaceLoneViews(&result);
   if (clock_) {
     const TimeNs t3 = clock_();
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
@@ -526,6 +576,7 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->state = last;
   result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
+  result->new_track = true;
 }
 
 int FrameSetTracker::SpotCount(int camera, const Eigen::Vector2d& pixel) {
@@ -682,8 +733,7 @@ Measurement FrameSetTracker::ToMeasurement(const Hypothesis& h) const {
 
 std::optional<Measurement> FrameSetTracker::SingleView(
     const std::vector<std::vector<Detection>>& candidates,
-    const std::optional<Eigen::Vector3d>& predicted, const Eigen::Matrix3d& predicted_covariance,
-    std::vector<std::pair<int, int>>* used) const {
+    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
   std::optional<Measurement> best;
   double best_score = 0.0;
   std::pair<int, int> best_id;
@@ -710,23 +760,10 @@ std::optional<Measurement> FrameSetTracker::SingleView(
       const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
       const Eigen::Matrix3d across_ray = Eigen::Matrix3d::Identity() - ray * ray.transpose();
       const double across = sphere->distance * options_.pixel_sigma / camera.fx;
-      if (predicted && rig_.size() > 1 &&
-          std::sqrt(ray.dot(predicted_covariance * ray)) > options_.single_view_max_depth_sigma) {
-        continue;
-      }
-      if (predicted && rig_.size() > 1) {
-        // Continuing a track: the view fixes the ball's direction; its depth along the ray comes
-        // from the filter's prediction, which beats the diameter's (paper §3.2: "error-prone").
-        const double depth = std::max(0.1, (*predicted - camera.Center()).dot(ray));
-        m.position = camera.Center() + depth * ray;
-        const double along = options_.single_view_depth_sigma;
-        m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
-      } else {
-        m.position = sphere->point;
-        const double along =
-            sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
-        m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
-      }
+      m.position = sphere->point;
+      const double along =
+          sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+      m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
       best = m;
       best_score = score;
       best_id = {c, k};
@@ -734,6 +771,129 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   }
   if (best) *used = {best_id};
   return best;
+}
+
+std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
+    const std::vector<std::vector<Detection>>& candidates, const Eigen::Vector3d& predicted,
+    const Eigen::Matrix3d& predicted_covariance) const {
+  std::optional<LoneView> best;
+  double best_d2 = 0.0;
+  for (int c = 0; c < rig_.size(); ++c) {
+    if (candidates[c].empty()) continue;
+    const Camera& camera = rig_.cameras[c];
+    const auto centre = camera.Project(predicted);
+    if (!centre) continue;
+    // The prediction's covariance in the image: J P J^T (J by differences of 1 mm) plus the
+    // view's own noise.
+    Eigen::Matrix<double, 2, 3> jacobian;
+    bool projects = true;
+    for (int i = 0; i < 3 && projects; ++i) {
+      const auto moved = camera.Project(predicted + 1e-3 * Eigen::Vector3d::Unit(i));
+      projects = moved.has_value();
+      if (projects) jacobian.col(i) = (*moved - *centre) / 1e-3;
+    }
+    if (!projects) continue;
+    const Eigen::Matrix2d image_covariance =
+        jacobian * predicted_covariance * jacobian.transpose() +
+        options_.pixel_sigma * options_.pixel_sigma * Eigen::Matrix2d::Identity();
+    // A prediction that cannot tell the ball from what lies a diameter beside it (a track that
+    // coasted) is not continued by one view.
+    const double expected = ExpectedDiameterPx(camera, predicted);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(image_covariance);
+    if (std::sqrt(std::max(0.0, spread.eigenvalues().maxCoeff())) >
+        options_.lone_view_image_sigma * expected) {
+      continue;
+    }
+    const Eigen::Matrix2d information = image_covariance.inverse();
+    for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
+      const Detection& d = candidates[c][k];
+      const Eigen::Vector2d r = d.pixel - *centre;
+      const double d2 = r.dot(information * r);
+      if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;
+      LoneView lone;
+      lone.id = {c, k};
+      lone.ray = camera.RayDirection(d.pixel);
+      lone.depth_sigma = std::sqrt(lone.ray.dot(predicted_covariance * lone.ray));
+      // The view fixes the ball's direction; its depth along the ray comes from the filter's
+      // prediction, which beats the diameter's (paper §3.2: "error-prone")...
+      const double depth = std::max(0.1, (predicted - camera.Center()).dot(lone.ray));
+      // ...but the diameter must agree with it (3 sigmas of both); a streak's diameter is the
+      // expected one or a guess from its share: no evidence.
+      if (!d.streak) {
+        const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px,
+                                                 EllipseAxis::kAcrossRadius, table::kBallRadius);
+        if (!sphere) continue;
+        const double sigma =
+            sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+        if (std::abs(sphere->distance - depth) > 3.0 * std::hypot(sigma, lone.depth_sigma)) {
+          continue;
+        }
+      }
+      const double across = depth * options_.pixel_sigma / camera.fx;
+      const double along = options_.single_view_depth_sigma;
+      Measurement& m = lone.measurement;
+      m.cameras = 1;
+      m.position = camera.Center() + depth * lone.ray;
+      m.covariance =
+          along * along * lone.ray * lone.ray.transpose() +
+          across * across * (Eigen::Matrix3d::Identity() - lone.ray * lone.ray.transpose());
+      best = lone;
+      best_d2 = d2;
+    }
+  }
+  return best;
+}
+
+void FrameSetTracker::PlaceLoneViews(FrameSetResult* result) {
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  std::erase_if(waiting_, [&](const WaitingView& w) { return result->t - w.t > hold; });
+  while (!fixes_.empty() && result->t - fixes_.front() > hold) fixes_.pop_front();
+  if (waiting_.empty()) return;
+  const std::deque<FilterStep>& history = tracker_.history();
+  const std::vector<FilterStep> steps(history.begin(), history.end());
+  const std::vector<SmoothedState> smoothed = SmoothSteps(steps);
+  std::erase_if(waiting_, [&](const WaitingView& w) {
+    const auto it = std::find_if(smoothed.begin(), smoothed.end(),
+                                 [&](const SmoothedState& s) { return s.t == w.t; });
+    if (it == smoothed.end()) return true;  // no longer in the track's history
+    // Its track must follow the model everywhere (no measurement beyond 99 % of its prior): a
+    // hit the filter went through bends the smoothed path on both sides of it.
+    const auto i = it - smoothed.begin();
+    auto first = i, last = i;
+    while (first > 0 && !steps[first].start) --first;
+    while (last + 1 < static_cast<long>(steps.size()) && !steps[last + 1].start) ++last;
+    for (auto k = first; k <= last; ++k) {
+      if (steps[k].innovation_chi2 > options_.lone_view_consistency_chi2) return false;
+    }
+    // Between fixes, not after the last: two views of the ball after it in the same track.
+    if (std::none_of(fixes_.begin(), fixes_.end(),
+                     [&](TimeNs f) { return f > w.t && f <= steps[last].t; })) {
+      return false;
+    }
+    const Eigen::Matrix3d covariance = it->covariance.topLeftCorner<3, 3>();
+    if (std::sqrt(w.ray.dot(covariance * w.ray)) > options_.single_view_max_depth_sigma) {
+      return false;
+    }
+    // The smoothed track must pass through the view (3 pixel sigmas): one that misses it was
+    // pulled by a measurement after a hit or of something else.
+    const auto seen = rig_.cameras[w.camera].Project(it->state.head<3>());
+    if (!seen || (*seen - w.pixel).norm() > 3.0 * options_.pixel_sigma) return true;
+    Revision r;
+    r.t = w.t;
+    r.measurement.position = it->state.head<3>();
+    r.measurement.covariance = covariance;
+    r.measurement.cameras = 1;
+    r.state.t = w.t;
+    r.state.position = it->state.head<3>();
+    r.state.velocity = it->state.tail<3>();
+    r.state.measured = true;
+    r.state.cameras = 1;
+    r.accepted = {w.detection};
+    result->revisions.push_back(std::move(r));
+    return true;
+  });
+  std::stable_sort(result->revisions.begin(), result->revisions.end(),
+                   [](const Revision& a, const Revision& b) { return a.t < b.t; });
 }
 
 }  // namespace p4::track

@@ -8,6 +8,7 @@
 // images and their time come in as arguments; buffers are kept between calls.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -113,6 +114,24 @@ struct FrameSetOptions {
   // In a rig of several cameras a lone view continues a track only while the filter knows the
   // depth along its ray to this (m): beyond it the row would be a guess, not a measurement.
   double single_view_max_depth_sigma = 0.02;
+  // With confirm_tracks, a lone view continues the track while the filter knows its depth to
+  // lone_view_depth_sigma (m): the view fixes the ball's direction, and its row waits in the
+  // hold (ResultHold) until the track smoothed with the measurements after it (rts_smoother.h)
+  // knows its depth to single_view_max_depth_sigma; if it never does (or no two-view
+  // measurement follows it in the track), the row is no measurement. 0: only lone views whose
+  // depth the filter knows to single_view_max_depth_sigma, as rows at once.
+  double lone_view_depth_sigma = 0.3;
+  // A lone view continuing a track lies within this squared Mahalanobis distance of the ball
+  // predicted in its image (99 % of 2 degrees of freedom), and its diameter's depth within 3
+  // sigmas of the predicted one.
+  double lone_view_gate_chi2 = 9.21;
+  // ...and only while the ball predicted in its image is known to this many of its diameters
+  // (the largest sigma of the prediction projected): a track that coasted could take anything.
+  double lone_view_image_sigma = 3.0;
+  // ...and only while every measurement of that track agreed with the filter's prior within this
+  // squared Mahalanobis distance (99 % of 3 degrees of freedom): across a hit the smoothed path
+  // bends away from the ball on both sides.
+  double lone_view_consistency_chi2 = 11.34;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
   int threads = 1;
@@ -154,7 +173,8 @@ struct StageTimes {
   TimeNs filter = 0;     // the Kalman filter's step
 };
 
-// An earlier time-stamp, now known: a point of the tracklet that confirmed a track.
+// An earlier time-stamp, now known: a point of the tracklet that confirmed a track, or a lone
+// view the smoothed track now places.
 struct Revision {
   TimeNs t = 0;
   Measurement measurement;
@@ -167,10 +187,13 @@ struct FrameSetResult {
   StageTimes stages;
   std::optional<Measurement> measurement;
   std::optional<TrackedState> state;
-  // The measurement is this time-stamp's best candidate but no confirmed track has taken it (yet):
-  // a later result's revisions may; one still tentative when it is written is not the ball.
+  // The measurement is this time-stamp's best candidate but no confirmed track has taken it (yet),
+  // or a lone view the track took whose depth is not known yet (lone_view_depth_sigma): a later
+  // result's revisions may make it one; one still tentative when it is written is not the ball
+  // (and its state no measured one).
   bool tentative = false;
   std::vector<Revision> revisions;  // of earlier time-stamps, oldest first
+  bool new_track = false;           // a confirmed tracklet became the track at this time-stamp
   std::vector<Detection> detections;
   std::vector<CameraSearch> searches;  // one per camera of the rig
 };
@@ -239,10 +262,27 @@ class FrameSetTracker {
   // A confirmed tracklet becomes the track: the filter replays its points; all but the last
   // become revisions of their time-stamps, the last is this time-stamp's state and measurement.
   void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result);
+  // One-camera rig: the view placed by its diameter; with a prediction, the one nearest it.
   std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
                                         const std::optional<Eigen::Vector3d>& predicted,
-                                        const Eigen::Matrix3d& predicted_covariance,
                                         std::vector<std::pair<int, int>>* used) const;
+  // Several cameras, a track, no two views that agree: the view nearest the predicted one in
+  // its image (Mahalanobis, the prediction's covariance projected), of the size the predicted
+  // depth gives (lone_view_gate_chi2); its
+  // measurement on its ray at the predicted depth, and how well the filter knows that depth.
+  struct LoneView {
+    Measurement measurement;
+    std::pair<int, int> id;  // (camera, candidate)
+    Eigen::Vector3d ray = Eigen::Vector3d::UnitZ();
+    double depth_sigma = 0.0;  // m, the prediction's along the ray
+  };
+  std::optional<LoneView> NearestLoneView(const std::vector<std::vector<Detection>>& candidates,
+                                          const Eigen::Vector3d& predicted,
+                                          const Eigen::Matrix3d& predicted_covariance) const;
+  // The lone views whose rows wait (lone_view_depth_sigma) that the smoothed track now places
+  // (its depth along the ray known, its projection on the view, a two-view fix after it):
+  // revisions of their time-stamps; those older than the hold are given up.
+  void PlaceLoneViews(FrameSetResult* result);
 
   Rig rig_;
   segment::ColorLut lut_;
@@ -282,6 +322,15 @@ class FrameSetTracker {
   BallTracker tracker_;
   TrackInitiator initiator_;
   std::optional<TimeNs> last_taken_t_;  // the last time-stamp whose measurement the filter took
+  struct WaitingView {
+    TimeNs t = 0;
+    int camera = 0;
+    Eigen::Vector2d pixel;  // the view, at the set's time
+    Eigen::Vector3d ray;    // world frame, unit
+    int detection = 0;      // index into that time-stamp's detections
+  };
+  std::vector<WaitingView> waiting_;  // lone views whose rows wait for the smoother, oldest first
+  std::deque<TimeNs> fixes_;          // the time-stamps of the hold whose two views the track took
   std::function<TimeNs()> clock_;
 };
 

@@ -64,6 +64,13 @@ void KalmanFilter::Predict(double dt) {
     f.bottomRightCorner<3, 3>() += dt * jac;
   }
   p_ = f * p_ * f.transpose() + ProcessNoise(dt);
+  transition_ = f * transition_;
+}
+
+void KalmanFilter::Apply(const Matrix6d& d, const Matrix6d& extra_noise) {
+  x_ = d * x_;
+  p_ = d * p_ * d.transpose() + extra_noise;
+  transition_ = d * transition_;
 }
 
 Eigen::Matrix3d KalmanFilter::MeasurementNoise(const Eigen::Matrix3d& covariance) const {

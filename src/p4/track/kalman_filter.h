@@ -39,6 +39,9 @@ class KalmanFilter {
 
   // x = A x + B u (+ drag); P = F P F^T + Q with F the Jacobian. dt in seconds (> 0).
   void Predict(double dt);
+  // x = D x, P = D P D^T + extra: a linear map of the state (the table bounce), with the
+  // uncertainty it adds.
+  void Apply(const Matrix6d& d, const Matrix6d& extra_noise);
   // Kalman update with a position measurement and its covariance (kPaper ignores it and uses R).
   void Update(const Eigen::Vector3d& z, const Eigen::Matrix3d& covariance);
   // Squared Mahalanobis distance of a measurement from the predicted position.
@@ -46,8 +49,10 @@ class KalmanFilter {
 
   const Vector6d& state() const { return x_; }
   const Matrix6d& covariance() const { return p_; }
-  Vector6d& mutable_state() { return x_; }
-  Matrix6d& mutable_covariance() { return p_; }
+  // The Jacobian of the state's motion since the last ResetTransition (the product of every
+  // Predict's and Apply's), for a smoother (rts_smoother.h).
+  const Matrix6d& transition() const { return transition_; }
+  void ResetTransition() { transition_.setIdentity(); }
   const KalmanOptions& options() const { return options_; }
 
   // Matrices of the model for a step dt (for tests and for the paper's comparison).
@@ -61,6 +66,7 @@ class KalmanFilter {
   KalmanOptions options_;
   Vector6d x_ = Vector6d::Zero();
   Matrix6d p_ = Matrix6d::Identity();
+  Matrix6d transition_ = Matrix6d::Identity();
 };
 
 }  // namespace p4::track

@@ -10,6 +10,11 @@ FrameSetResult ResultHold::Final(FrameSetResult result) {
   if (result.tentative) {
     result.measurement.reset();
     result.tentative = false;
+    if (result.state) {
+      result.state->measured = false;
+      result.state->cameras = 0;
+      result.state->residual_px = 0.0;
+    }
   }
   return result;
 }

@@ -302,5 +302,38 @@ TEST(ResultHold, RevisionsReachHeldRowsAndTentativeOnesLoseTheirMeasurement) {
   }
 }
 
+// A lone view the track took waits with a measured state (FrameSetOptions::lone_view_depth_sigma):
+// never placed, it leaves as the filter's state without a measurement; placed, as its revision.
+TEST(ResultHold, AWaitingLoneViewLeavesAsAMeasurementOnlyWhenPlaced) {
+  ResultHold hold(0.25);
+  std::vector<FrameSetResult> out;
+  for (int k = 0; k < 40; ++k) {
+    FrameSetResult r = Result(k, k == 5 || k == 6);
+    if (r.tentative) {
+      r.measurement->cameras = 1;
+      r.state = TrackedState{r.t, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), true, 1, 0.0};
+    }
+    if (k == 8) {
+      Revision placed;
+      placed.t = FromSeconds(6 / kRate);
+      placed.measurement.cameras = 1;
+      placed.state.measured = true;
+      placed.state.cameras = 1;
+      placed.accepted = {0};
+      r.revisions.push_back(placed);
+    }
+    for (auto& f : hold.Push(std::move(r))) out.push_back(std::move(f));
+  }
+  ASSERT_GT(out.size(), 6u);
+  ASSERT_TRUE(out[5].state.has_value());
+  EXPECT_FALSE(out[5].measurement.has_value());
+  EXPECT_FALSE(out[5].state->measured);
+  EXPECT_EQ(out[5].state->cameras, 0);
+  ASSERT_TRUE(out[6].measurement.has_value());
+  EXPECT_TRUE(out[6].state->measured);
+  EXPECT_EQ(out[6].state->cameras, 1);
+  EXPECT_TRUE(out[6].detections[0].accepted);
+}
+
 }  // namespace
 }  // namespace p4::track
