@@ -477,6 +477,8 @@ TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed)
       }
       FrameSetResult result = tracker.Process(FromSeconds(t), views);
       if (k == kHidden) waited = result.tentative && result.state && result.state->measured;
+      // The placement is a revision of an earlier row, not a new track.
+      if (k > kHidden) EXPECT_FALSE(result.new_track) << k;
       for (auto& r : hold.Push(std::move(result))) rows.push_back(std::move(r));
     }
     for (auto& r : hold.Flush()) rows.push_back(std::move(r));
