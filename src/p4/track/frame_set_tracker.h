@@ -111,8 +111,9 @@ struct FrameSetOptions {
   double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
-  // In a rig of several cameras a lone view continues a track only while the filter knows the
-  // depth along its ray to this (m): beyond it the row would be a guess, not a measurement.
+  // In a rig of several cameras a lone view's row is a measurement only where the depth along
+  // its ray is known to this (m): by the smoothed track when lone views wait (below), else by the
+  // filter's prediction, at once. Beyond it the row would be a guess, not a measurement.
   double single_view_max_depth_sigma = 0.02;
   // With confirm_tracks, a lone view continues the track while the filter knows its depth to
   // lone_view_depth_sigma (m): the view fixes the ball's direction, and its row waits in the
@@ -267,9 +268,9 @@ class FrameSetTracker {
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         std::vector<std::pair<int, int>>* used) const;
   // Several cameras, a track, no two views that agree: the view nearest the predicted one in
-  // its image (Mahalanobis, the prediction's covariance projected), of the size the predicted
-  // depth gives (lone_view_gate_chi2); its
-  // measurement on its ray at the predicted depth, and how well the filter knows that depth.
+  // its image (Mahalanobis, the prediction's covariance projected; lone_view_gate_chi2,
+  // lone_view_image_sigma), of the size the predicted depth gives; its measurement on its ray at
+  // the predicted depth, and how well the filter knows that depth.
   struct LoneView {
     Measurement measurement;
     std::pair<int, int> id;  // (camera, candidate)
