@@ -1,6 +1,7 @@
 #include "p4/track/ball_tracker.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "p4/core/table.h"
@@ -93,7 +94,10 @@ void BallTracker::Record(TimeNs t, const KalmanFilter* prior, double innovation_
     step.prior_covariance = step.covariance;
   }
   history_.push_back(step);
-  while (t - history_.front().t > FromSeconds(options_.history_s)) history_.pop_front();
+  const auto kept = std::find_if(history_.begin(), history_.end(), [&](const FilterStep& s) {
+    return t - s.t <= FromSeconds(options_.history_s);
+  });
+  history_.erase(history_.begin(), kept);
 }
 
 std::optional<BallTracker::Velocity> BallTracker::PendingVelocity(TimeNs t,

@@ -14,6 +14,7 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "p4/core/time.h"
 #include "p4/track/kalman_filter.h"
@@ -89,7 +90,7 @@ class BallTracker {
 
   // The filter's steps of the last history_s, oldest first (rts_smoother.h): each time-stamp
   // the track went through, a start at each (re)start.
-  const std::deque<FilterStep>& history() const { return history_; }
+  const std::vector<FilterStep>& history() const { return history_; }
 
   bool tracking() const { return tracking_; }
   int restarts() const { return restarts_; }
@@ -125,7 +126,7 @@ class BallTracker {
   // The measurements the filter took over the last slow_window_s (time, position).
   std::deque<std::pair<TimeNs, Eigen::Vector3d>> recent_;
   int restarts_ = 0;
-  std::deque<FilterStep> history_;
+  std::vector<FilterStep> history_;  // a few dozen steps: trimmed at the front
 };
 
 }  // namespace p4::track

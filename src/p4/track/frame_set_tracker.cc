@@ -848,9 +848,10 @@ void FrameSetTracker::PlaceLoneViews(FrameSetResult* result) {
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   std::erase_if(waiting_, [&](const WaitingView& w) { return result->t - w.t > hold; });
   while (!fixes_.empty() && result->t - fixes_.front() > hold) fixes_.pop_front();
-  if (waiting_.empty()) return;
-  const std::deque<FilterStep>& history = tracker_.history();
-  const std::vector<FilterStep> steps(history.begin(), history.end());
+  // A step that took no measurement changes no smoothed state before it, nor the fixes: the
+  // waiting views' verdicts stay as they were.
+  if (waiting_.empty() || !result->state || !result->state->measured) return;
+  const std::vector<FilterStep>& steps = tracker_.history();
   const std::vector<SmoothedState> smoothed = SmoothSteps(steps);
   std::erase_if(waiting_, [&](const WaitingView& w) {
     const auto it = std::find_if(smoothed.begin(), smoothed.end(),
