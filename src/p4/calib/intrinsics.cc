@@ -5,6 +5,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "p4/calib/opencv_camera.h"
+#include "p4/core/robust.h"
 
 namespace p4::calib {
 namespace {
@@ -69,10 +70,8 @@ std::optional<IntrinsicsResult> CalibrateIntrinsics(std::span<const BoardView> v
   Pass pass;
   try {
     pass = Calibrate(views, use, size, options);
-    std::vector<double> sorted = pass.view_rms;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const double limit =
-        std::max(options.outlier_min_px, options.outlier_factor * sorted[sorted.size() / 2]);
+        std::max(options.outlier_min_px, options.outlier_factor * Median(pass.view_rms));
     std::vector<int> kept;
     for (std::size_t k = 0; k < use.size(); ++k) {
       if (pass.view_rms[k] > limit) {

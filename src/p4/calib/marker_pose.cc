@@ -6,6 +6,7 @@
 #include <opencv2/aruco.hpp>
 
 #include "p4/calib/aruco_markers.h"
+#include "p4/core/robust.h"
 
 namespace p4::calib {
 namespace {
@@ -187,9 +188,7 @@ std::optional<MarkerPoseResult> SolveMarkerPose(const std::optional<Camera>& int
       for (int k = 0; k < 4; ++k) sum += fit->errors_px[4 * i + k] * fit->errors_px[4 * i + k];
       marker_rms[i] = std::sqrt(sum / 4.0);
     }
-    std::vector<double> sorted = marker_rms;
-    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
-    const double limit = std::max(1.0, 3.0 * sorted[n / 2]);
+    const double limit = std::max(1.0, 3.0 * Median(marker_rms));
     std::vector<PointMatch> kept;
     std::vector<int> kept_ids;
     for (int i = 0; i < n; ++i) {

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "p4/core/error.h"
+#include "p4/core/robust.h"
 #include "p4/core/table.h"
 
 namespace p4 {
@@ -237,9 +238,7 @@ double BallPixels(const Rig& rig, const std::vector<TruthRow>& truth) {
       sizes.push_back(camera.fx * table::kBallDiameter / c.z());
     }
     if (sizes.empty()) continue;
-    std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2),
-                     sizes.end());
-    const double median = sizes[sizes.size() / 2];
+    const double median = MedianInPlace(sizes);
     smallest = smallest == 0.0 ? median : std::min(smallest, median);
   }
   return smallest;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/core/robust.h"
 #include "p4/segment/pixel_access.h"
 
 namespace p4::segment {
@@ -73,9 +74,7 @@ void BackgroundModel::EstimateGain(const ImageView& image) {
   if (ratios_.size() < 16) {
     gain_ = 1.0;
   } else {
-    const auto mid = ratios_.begin() + static_cast<std::ptrdiff_t>(ratios_.size() / 2);
-    std::nth_element(ratios_.begin(), mid, ratios_.end());
-    gain_ = std::clamp(static_cast<double>(*mid), 0.25, 4.0);
+    gain_ = std::clamp(static_cast<double>(MedianInPlace(ratios_)), 0.25, 4.0);
   }
   gain_f_ = static_cast<float>(gain_);
 }

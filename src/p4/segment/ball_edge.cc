@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "p4/core/robust.h"
 #include "p4/segment/pixel_access.h"
 
 namespace p4::segment {
@@ -147,8 +148,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
         }
       }
       if (ring.empty()) return std::nullopt;
-      std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
-      median[channel] = ring[ring.size() / 2];
+      median[channel] = MedianInPlace(ring);
     }
     const auto edge = [&](int r) {
       if (!sampled[static_cast<std::size_t>(r)]) return -1.0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "p4/core/robust.h"
+
 namespace p4::segment {
 namespace {
 
@@ -27,14 +29,10 @@ std::optional<BallMeasure> MeasureBall(const ImageView& image, const Region& reg
     ring.push_back(Luma(image, x, y0)), ring.push_back(Luma(image, x, y1 - 1));
   for (int y = y0 + 1; y < y1 - 1; ++y)
     ring.push_back(Luma(image, x0, y)), ring.push_back(Luma(image, x1 - 1, y));
-  std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
-  const double background = ring[ring.size() / 2];
+  const double background = MedianInPlace(ring);
   // The background's own spread (sensor noise, texture), robustly: 1.4826 x median |deviation|.
-  std::vector<double> deviation;
-  deviation.reserve(ring.size());
-  for (uint8_t v : ring) deviation.push_back(std::abs(v - background));
-  std::nth_element(deviation.begin(), deviation.begin() + deviation.size() / 2, deviation.end());
-  const double floor = std::max(2.0, 2.5 * 1.4826 * deviation[deviation.size() / 2]);
+  std::vector<double> deviation(ring.begin(), ring.end());
+  const double floor = std::max(2.0, 2.5 * RobustSigmaInPlace(deviation, background));
   // Ball level: the 75th percentile of the luma difference inside the region's box, taken on the
   // side (brighter or darker) where the region's centre lies.
   const int cx = static_cast<int>(std::lround(region.cx)),

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "p4/core/robust.h"
 #include "p4/segment/pixel_access.h"
 
 namespace p4::segment {
@@ -212,11 +213,7 @@ bool ColourSamples::Learn(const ColourLearningOptions& options, LearnedColour* o
   for (std::size_t i = lo; i < sorted.size(); ++i) {
     ys.push_back(sorted[i].y), us.push_back(sorted[i].u), vs.push_back(sorted[i].v);
   }
-  const auto median = [](std::vector<float> x) {
-    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
-    return x[x.size() / 2];
-  };
-  const Yuv lit{median(ys), median(us), median(vs)};
+  const Yuv lit{MedianInPlace(ys), MedianInPlace(us), MedianInPlace(vs)};
   out->ball.lit = lit;
   // Shading scales the ball's colour along the line from black to it (ball_colour.h): a sample's
   // shade is its luma's share of the lit luma, and its chroma off that line at its shade is not
@@ -234,11 +231,11 @@ bool ColourSamples::Learn(const ColourLearningOptions& options, LearnedColour* o
     off[i] = static_cast<float>(
         std::hypot(p.u - on_line(shade[i], lit.u, k.u), p.v - on_line(shade[i], lit.v, k.v)));
   }
-  const float med = median(off);
-  std::vector<float> dev(off.size());
-  for (std::size_t i = 0; i < off.size(); ++i) dev[i] = std::abs(off[i] - med);
+  const float med = Median(off);
+  std::vector<float> dev = off;
   // (At most max_off_line: a spread wider than that is a mixture, the ball and something else.)
-  const double bound = std::clamp(med + 3.0 * 1.4826 * median(dev), 4.0, options.max_off_line);
+  const double bound =
+      std::clamp(med + 3.0 * RobustSigmaInPlace(dev, med), 4.0, options.max_off_line);
   // The classes follow that line: `boxes` bands of shade between the inliers' 2nd and 98th
   // percentiles (not darker than a quarter of the lit colour: near black every colour meets the
   // line), each box the line's colour over its band, widened by the bound and the margin.

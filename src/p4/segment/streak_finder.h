@@ -40,10 +40,13 @@ struct StreakFinderOptions {
   // Half-lengths tried, in cells along the line's major axis (a segment spans 2h + 1 cells):
   // 12-68 px streaks, a ball crossing a webcam's frame at 3-15 m/s.
   std::vector<int> half_cells = {1, 2, 4, 8};
-  int side_cells = 2;          // the side lines' offset across the segment, cells
-  double max_share = 0.35;     // a block counts as at most this much ball
-  double min_score = 5.0;      // sigmas over the brighter side
-  int max_candidates = 4;      // the best, apart from one another by their half-lengths...
+  int side_cells = 2;       // the side lines' offset across the segment, cells
+  double max_share = 0.35;  // a block counts as at most this much ball
+  double min_score = 5.0;   // sigmas over the brighter side
+  // The best, apart from one another by their half-lengths... (arms and shirts' edges of the
+  // ball's colour outscore a faint ball and took every place of 4: in webcam tuning 4, camera
+  // 0, the ball was among the best 4 in 79 of 155 frames, among 8 in 90, among 16 in 91)
+  int max_candidates = 8;
   double still_px = 4.0;       // ...and from where one was in the last frame (the ball moves)
   int max_seen = 32;           // local bests remembered for the next frame
   double shade = 0.85;         // the ball's mean shading (as StreakSearchOptions)

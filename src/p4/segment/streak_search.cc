@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "p4/core/robust.h"
 #include "p4/segment/pixel_access.h"
 
 namespace p4::segment {
@@ -211,12 +212,8 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
     }
   }
   if (static_cast<int>(null_.size()) < o.null_samples / 2) return std::nullopt;
-  const auto mid = null_.begin() + static_cast<std::ptrdiff_t>(null_.size() / 2);
-  std::nth_element(null_.begin(), mid, null_.end());
-  const double median = *mid;
-  for (double& v : null_) v = std::abs(v - median);
-  std::nth_element(null_.begin(), mid, null_.end());
-  const double spread = std::max(1.4826 * *mid, 1e-6);
+  const double median = MedianInPlace(null_);
+  const double spread = std::max(RobustSigmaInPlace(null_, median), 1e-6);
   StreakHit hit;
   hit.cx = best.cx, hit.cy = best.cy, hit.length_px = best.length, hit.angle = best.angle;
   hit.snr = (best.score - median) / spread;

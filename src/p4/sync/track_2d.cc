@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <tuple>
 
+#include "p4/core/robust.h"
+
 namespace p4::sync {
 
 bool Track2dOptions::IsValid(std::string* error) const {
@@ -77,11 +79,9 @@ std::vector<Track2d> LinkTracks(const std::vector<FrameCandidates>& frames,
 
 namespace {
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
+// 0 for no values.
+double MedianOrZero(std::vector<double> values) {
+  return values.empty() ? 0.0 : MedianInPlace(values);
 }
 
 }  // namespace
@@ -89,7 +89,7 @@ double Median(std::vector<double> values) {
 double FramePeriod(const std::vector<FrameCandidates>& frames) {
   std::vector<double> steps;
   for (std::size_t i = 1; i < frames.size(); ++i) steps.push_back(frames[i].t - frames[i - 1].t);
-  return Median(std::move(steps));
+  return MedianOrZero(std::move(steps));
 }
 
 double FramePeriod(const std::vector<Track2d>& tracks) {
@@ -99,7 +99,7 @@ double FramePeriod(const std::vector<Track2d>& tracks) {
       steps.push_back(track.points[i].t - track.points[i - 1].t);
     }
   }
-  return Median(std::move(steps));
+  return MedianOrZero(std::move(steps));
 }
 
 }  // namespace p4::sync
