@@ -3,6 +3,7 @@
 // Each scene runs `p4track simulate`, `track` and `eval` as child processes of this program, so
 // one scene that fails is reported and the suite goes on.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,13 +17,17 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.h"
 #include "p4/core/error.h"
 #include "p4/core/time.h"
+#include "p4/eval/findable.h"
 #include "p4/eval/suite.h"
 #include "p4/io/rig_file.h"
 #include "p4/io/run_files.h"
+#include "p4/io/truth_files.h"
+#include "p4/io/video_reader.h"
 
 namespace p4::app {
 namespace {
@@ -39,6 +44,7 @@ struct SuiteArgs {
   std::string ball = "auto";
   std::string readout = "found";  // rolling shutter: found from the ball, or known (the rig's)
   std::vector<std::string> track_args;
+  bool findable = false;  // each scene's findable share (eval/findable.h), from its videos
 };
 
 // Runs this program with `args`, its output into `log`; the exit code (-1 when it did not run).
@@ -110,7 +116,26 @@ struct Outcome {
   double ball_px = -1.0;
   nlohmann::json look;
   double sync_ms = -1.0;  // the worst camera's clock error (kNone: refused; < 0: in step)
+  std::optional<FindableReport> findable;
 };
+
+// The share of frames whose ball the streak search finds at its true place (eval/findable.h),
+// read from the scene's videos. Cameras in step only (the truth's stamps are the frames').
+FindableReport Findable(const SuiteScene& scene, const fs::path& sim) {
+  const Rig rig = ReadRig((sim / "rig.yaml").string());
+  segment::BallColour ball;
+  segment::BallColour::Named(scene.ball, &ball);
+  FindableCounter counter(rig, ReadTruthCsv((sim / "truth.csv").string()),
+                          ReadVisibilityCsv((sim / "truth_visibility.csv").string(), rig), ball,
+                          1e-3 * scene.exposure_ms);
+  for (int c = 0; c < rig.size(); ++c) {
+    VideoReader reader((sim / fmt::format("cam{}.mp4", c)).string());
+    I420Image frame;
+    TimeNs pts = 0;
+    while (reader.Read(&frame, &pts)) counter.Add(c, pts, frame.View());
+  }
+  return counter.Report();
+}
 
 // The worst camera's clock error (ms) at the middle of the play: the clocks `track` found
 // (run/rig_synced.yaml) against the simulator's (sim/rig_synced.yaml). < 0 when the cameras
@@ -201,6 +226,13 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
     out.figures = nlohmann::json::parse(in, nullptr, false);
     if (out.figures.is_discarded()) out.failed = "eval output";
     out.sync_ms = SyncErrorMs(sim, run, scene.seconds);
+    if (a.findable && scene.start_offsets_s.empty()) {
+      try {
+        out.findable = Findable(scene, sim);
+      } catch (const Error& e) {
+        spdlog::warn("{}: no findable share: {}", sim.string(), e.what());
+      }
+    }
   }
   if (!a.keep) {
     std::error_code ec;
@@ -231,6 +263,11 @@ int Run(const SuiteArgs& a) {
       "median mm | recall % | FP % | sync ms | twin RMSE mm / recall % |\n| --- | --- | --- | --- "
       "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   std::cout << table << std::flush;
+  // --findable: per scene, the share of frames whose ball could be found at all (at its true
+  // place), beside the recall.
+  std::string findable_table =
+      "\n| family | set | seed | findable % (>= 2 cameras) | recall % | per camera: found / seen "
+      "|\n| --- | --- | --- | --- | --- | --- |\n";
   int index = 0;
   for (const SuiteScene& scene : scenes) {
     ++index;
@@ -244,6 +281,23 @@ int Run(const SuiteArgs& a) {
     const Outcome outcome = SimulateTrackEvaluate(scene, dir, "", a, {}, false);
     if (outcome.ball_px >= 0.0) row["ball_px"] = std::round(outcome.ball_px * 10.0) / 10.0;
     if (!outcome.look.is_null()) row["look"] = outcome.look;
+    if (outcome.findable) {
+      const FindableReport& f = *outcome.findable;
+      row["findable"] = {{"share", std::round(f.share() * 1e5) / 1e5},
+                         {"frames_seen", f.frames_seen},
+                         {"frames_findable", f.frames_findable},
+                         {"camera_seen", f.camera_seen},
+                         {"camera_found", f.camera_found}};
+      std::vector<std::string> cameras;
+      for (std::size_t c = 0; c < f.camera_seen.size(); ++c) {
+        cameras.push_back(fmt::format("{}/{}", f.camera_found[c], f.camera_seen[c]));
+      }
+      findable_table += fmt::format(
+          "| {} | {} | {} | {:.1f} | {} | {} |\n", scene.family, scene.set, scene.seed,
+          100.0 * f.share(),
+          outcome.failed.empty() ? Figure(outcome.figures, "recall", 100.0, 1) : std::string("-"),
+          fmt::format("{}", fmt::join(cameras, " ")));
+    }
     if (!outcome.failed.empty()) {
       row["failed"] = fmt::format("{} (see {})", outcome.failed, log);
       spdlog::warn("{}: {} failed, see {}", name, outcome.failed, log);
@@ -378,6 +432,7 @@ int Run(const SuiteArgs& a) {
           met ? "met" : "missed");
     }
   }
+  if (a.findable) report += findable_table;
   std::cout << report << std::flush;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -420,6 +475,10 @@ std::function<int()> AddEvalSuiteCommand(CLI::App& app) {
       ->check(CLI::Range(1, 499))
       ->capture_default_str();
   cmd->add_flag("--keep", args->keep, "Keep the rendered videos (deleted after each scene)");
+  cmd->add_flag("--findable", args->findable,
+                "Also measure each scene's findable share: the frames whose ball the streak search "
+                "finds at its true place in 2 cameras or more (a ceiling for recall; cameras in "
+                "step only)");
   cmd->add_option("--ball", args->ball,
                   "auto: track as `track` does by default (--ball auto: the colour learnt from the "
                   "scene); hint: with the scene's ball colour named (--ball orange|white|yellow)")

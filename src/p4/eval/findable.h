@@ -1,0 +1,71 @@
+// How often the ball could be found at all: a ceiling for recall with a physical meaning (beyond
+// the paper). In each camera's picture the streak search (segment/streak_search.h) is given the
+// ball's TRUE centre, image motion over the exposure and size: a frame of a camera counts as
+// findable when the search then finds the ball (its blend with the background stands out of the
+// picture's own clutter along the true path). A frame seen by min_views cameras is findable when
+// min_views of them find it. The tracker, which must find the ball without knowing where it is,
+// can hardly do better where the ball's own pixels do not stand out (an orange ball over an
+// orange floor, a 3 px ball over a shirt of its colour, a faint streak in H.264 at a low rate):
+// a scene's recall is read against this share.
+//
+// Frames are matched to the truth by their stamps (cameras in step; within 0.5 ms of a truth
+// row). The background model of each camera learns from every frame (BackgroundModel's warm-up
+// frames are never findable). World frame, metres; pixels with centres at integers. Pure: the
+// caller decodes the pictures.
+#pragma once
+
+#include <vector>
+
+#include "p4/core/image.h"
+#include "p4/core/time.h"
+#include "p4/geometry/rig.h"
+#include "p4/io/run_files.h"
+#include "p4/segment/background_model.h"
+#include "p4/segment/ball_colour.h"
+#include "p4/segment/streak_search.h"
+
+namespace p4 {
+
+struct FindableOptions {
+  double min_visibility = 0.5;  // share of the ball a camera sees for the frame to count there
+  int min_views = 2;            // cameras that must see (and find) the ball
+  segment::StreakSearchOptions search;
+  segment::BackgroundOptions background;
+};
+
+struct FindableReport {
+  int frames_seen = 0;      // in play and seen by min_views cameras or more
+  int frames_findable = 0;  // of those, found at the true place by min_views cameras or more
+  std::vector<int> camera_seen, camera_found;  // per camera, over the frames it sees
+  double share() const {
+    return frames_seen > 0 ? static_cast<double>(frames_findable) / frames_seen : 0.0;
+  }
+};
+
+class FindableCounter {
+ public:
+  // `visibility`: per truth row and camera, the share seen (ReadVisibilityCsv; empty: all seen).
+  // `exposure_s`: the cameras' exposure (the streak's length is the image motion over it).
+  FindableCounter(const Rig& rig, std::vector<TruthRow> truth,
+                  std::vector<std::vector<float>> visibility, const segment::BallColour& ball,
+                  double exposure_s, const FindableOptions& options = {});
+
+  // Camera c's next picture, stamped t (each camera's pictures in time order).
+  void Add(int camera, TimeNs t, const ImageView& image);
+  FindableReport Report() const;
+
+ private:
+  bool Seen(std::size_t row, int camera) const;
+
+  Rig rig_;
+  std::vector<TruthRow> truth_;
+  std::vector<std::vector<float>> visibility_;
+  segment::BallColour ball_;
+  double exposure_s_;
+  FindableOptions options_;
+  std::vector<segment::BackgroundModel> backgrounds_;
+  std::vector<segment::StreakSearch> searches_;
+  std::vector<std::vector<char>> found_;  // per truth row and camera
+};
+
+}  // namespace p4
