@@ -11,10 +11,10 @@ namespace p4::track {
 
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
   if (confirm_points < 2 || !(min_travel >= 0.0) || !(min_travel_speed >= 0.0) || !(gate > 0.0) ||
-      !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) || !(fall_span_s > 0.0) ||
-      !(fall_tolerance > 0.0) || fall_points < 4 || !(fit_tolerance > 0.0) ||
-      !(fit_sigmas >= 0.0) || !(max_span_s > max_gap_s) || !(max_speed > 0.0) ||
-      max_tracklets < 1 || max_missed < 0 || min_confirm_points < 2 ||
+      !(toss_max_lean >= 0.0) || !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) ||
+      !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) || fall_points < 4 ||
+      !(fit_tolerance > 0.0) || !(fit_sigmas >= 0.0) || !(max_span_s > max_gap_s) ||
+      !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 || min_confirm_points < 2 ||
       min_confirm_points > confirm_points || !(confirm_span_s > 0.0)) {
     if (error) {
       *error =
@@ -106,6 +106,13 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
       points.back().measurement.position - points.front().measurement.position;
   const double span = ToSeconds(points.back().t - points.front().t);
   if (travel.norm() >= options_.min_travel && travel.norm() >= options_.min_travel_speed * span) {
+    return true;
+  }
+  // Rising straight up (a serve's toss): min_travel up over fall_span_s or more, however slowly
+  // (the newest points fit a flight with gravity's pull, above).
+  if (options_.toss_max_lean > 0.0 && span >= options_.fall_span_s &&
+      travel.z() >= options_.min_travel &&
+      travel.head<2>().norm() <= options_.toss_max_lean * travel.z()) {
     return true;
   }
   // Falling: z = a + b t + c t^2 by least squares, c against -g/2.

@@ -46,6 +46,15 @@ struct TrackInitiatorOptions {
   double fall_span_s = 0.1;
   double fall_tolerance = 0.3;
   int fall_points = 6;
+  // A serve's toss rises slowly from the first (a legal toss leaves the hand at 1.8 m/s or more
+  // and gravity takes 0.4 m/s off it in 0.04 s: its first 4 points at 25 fps average 1.2-1.4
+  // m/s, under min_travel_speed) and nearly straight up: a tracklet spanning fall_span_s that
+  // rose min_travel with its horizontal travel within toss_max_lean of its rise (27 degrees off
+  // the vertical) is confirmed too; its newest points must still fit one flight (fit_tolerance).
+  // Over 4 points at 25 fps that fit does not tell gravity's pull from a steady lift (4 mm RMS
+  // apart): a hand lifting something of the ball's colour and size 10 cm straight up in 0.1 s is
+  // confirmed as well, and its track ends after slow_window_s (it does not fall). 0: off.
+  double toss_max_lean = 0.5;
   // The newest confirm_points must fit one flight (gravity and drag, no spin, no bounce) within
   // this RMS (m) plus fit_sigmas of the measurements: the gate below, from two points, is wide
   // when they are 40 ms apart (a still speck paired with a moving one flies along a ray).

@@ -214,6 +214,56 @@ TEST(TrackInitiator, ASlowTossAt25FpsIsConfirmedByItsFallFromItsSixthPoint) {
   EXPECT_EQ(*confirmed_at, 5);  // its sixth point (it has fallen 8 cm by then: no travel yet)
 }
 
+// A serve's toss seen at 25 fps with 3 mm of noise, its first `points`: launched at `launch` m/s
+// from 0.1 m above the table's level, `lean` m sideways for every metre up (or, `gravity` false,
+// lifted at that speed steadily). The frame it is confirmed at.
+std::optional<int> ConfirmedRise(double launch, bool gravity, double lean, int points) {
+  TrackInitiator initiator;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  for (int k = 0; k < points; ++k) {
+    const double t = k / 25.0;
+    const double rise = launch * t - (gravity ? 4.9 * t * t : 0.0);
+    const TrackletPoint p = PointAt(
+        t,
+        Eigen::Vector3d(-1.5 + lean * rise + noise(rng), 0.2 + noise(rng), 0.1 + rise + noise(rng)),
+        0.003, 1);
+    if (initiator.Push(p.t, std::vector<TrackletPoint>{p})) return k;
+  }
+  return std::nullopt;
+}
+
+TEST(TrackInitiator, ASlowTossRisingAt25FpsIsConfirmedFromItsFourthPoint) {
+  // Launched at 2.0 m/s: its first 4 points average 1.41 m/s (under min_travel_speed) over 17
+  // cm; before toss_max_lean it waited for 6 points of its fall (0.24 s later at best).
+  const auto at = ConfirmedRise(2.0, true, 0.0, 8);
+  ASSERT_TRUE(at.has_value());
+  EXPECT_EQ(*at, 3);
+  TrackInitiatorOptions off;
+  off.toss_max_lean = 0.0;
+  TrackInitiator without(off);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  for (int k = 0; k < 4; ++k) {
+    const double t = k / 25.0;
+    const TrackletPoint p = PointAt(
+        t, Eigen::Vector3d(-1.5 + noise(rng), 0.2 + noise(rng), 0.1 + 2.0 * t - 4.9 * t * t), 0.003,
+        1);
+    EXPECT_FALSE(without.Push(p.t, std::vector<TrackletPoint>{p}).has_value()) << k;
+  }
+}
+
+TEST(TrackInitiator, ASlantedSlowRiseIsNoToss) {
+  // Rising as slowly but 39 degrees off the vertical (an arm's swing): not in its first 5
+  // points (its 6th, 0.2 s in, confirms it by its fall, as any slow flight).
+  EXPECT_FALSE(ConfirmedRise(1.5, true, 0.8, 5).has_value());
+  EXPECT_TRUE(ConfirmedRise(1.5, true, 0.0, 5).has_value());
+  // A known limit: over 4 points at 25 fps a flight with gravity's pull and a steady lift differ
+  // by 4 mm RMS, within the fit's tolerance: a hand lifted 10 cm straight up at 1.4 m/s is
+  // confirmed too (the filter then ends its track after slow_window_s: it does not fall).
+  EXPECT_TRUE(ConfirmedRise(1.4, false, 0.0, 5).has_value());
+}
+
 TEST(TrackInitiator, AJerkyPathFitsNoFlight) {
   // At 25 sets per second, 1 cm of noise: a speck on a player that jumps on, stops and jumps
   // again, at a constant height. Each point lies within the wide gate of the two before it, and
@@ -248,6 +298,9 @@ TEST(TrackInitiator, ValidatesItsOptions) {
   EXPECT_FALSE(o.IsValid(&why));
   o = {};
   o.fit_tolerance = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = {};
+  o.toss_max_lean = -0.1;
   EXPECT_FALSE(o.IsValid(&why));
 }
 
