@@ -216,9 +216,10 @@ TEST(TrackInitiator, ASlowTossAt25FpsIsConfirmedByItsFallFromItsSixthPoint) {
 
 // A serve's toss seen at 25 fps with 3 mm of noise, its first `points`: launched at `launch` m/s
 // from 0.1 m above the table's level, `lean` m sideways for every metre up (or, `gravity` false,
-// lifted at that speed steadily). The frame it is confirmed at.
-std::optional<int> ConfirmedRise(double launch, bool gravity, double lean, int points) {
-  TrackInitiator initiator;
+// lifted at that speed steadily). The frame it is confirmed at, if any.
+std::optional<int> ConfirmedRise(double launch, bool gravity, double lean, int points,
+                                 const TrackInitiatorOptions& options = {}) {
+  TrackInitiator initiator(options);
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.003);
   for (int k = 0; k < points; ++k) {
@@ -241,16 +242,7 @@ TEST(TrackInitiator, ASlowTossRisingAt25FpsIsConfirmedFromItsFourthPoint) {
   EXPECT_EQ(*at, 3);
   TrackInitiatorOptions off;
   off.toss_max_lean = 0.0;
-  TrackInitiator without(off);
-  std::mt19937 rng(5);
-  std::normal_distribution<double> noise(0.0, 0.003);
-  for (int k = 0; k < 4; ++k) {
-    const double t = k / 25.0;
-    const TrackletPoint p = PointAt(
-        t, Eigen::Vector3d(-1.5 + noise(rng), 0.2 + noise(rng), 0.1 + 2.0 * t - 4.9 * t * t), 0.003,
-        1);
-    EXPECT_FALSE(without.Push(p.t, std::vector<TrackletPoint>{p}).has_value()) << k;
-  }
+  EXPECT_FALSE(ConfirmedRise(2.0, true, 0.0, 4, off).has_value());
 }
 
 TEST(TrackInitiator, ASlantedSlowRiseIsNoToss) {
