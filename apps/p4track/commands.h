@@ -20,4 +20,10 @@ std::function<int()> AddSyncCommand(CLI::App& app);
 // "1280x720" -> width, height (even, 64x48 to 7680x4320); throws p4::Error naming `flag`.
 void ParseSize(const std::string& text, const std::string& flag, int* width, int* height);
 
+// --streaks auto|on|off as the highest frame rate whose cameras look for faint streaks: auto
+// keeps `auto_fps`, on any rate, off none.
+inline double StreakMaxFps(const std::string& streaks, double auto_fps) {
+  return streaks == "on" ? 1e9 : streaks == "off" ? 0.0 : auto_fps;
+}
+
 }  // namespace p4::app

@@ -18,7 +18,7 @@ namespace p4::app {
 namespace {
 
 struct SyncArgs {
-  std::string rig, out, classes, ball = "any";
+  std::string rig, out, classes, ball = "any", streaks = "auto";
   std::vector<std::string> sources;
   double max_offset = 5.0, seconds = 0.0;
   bool rolling_shutter = false;
@@ -41,6 +41,9 @@ int Run(const SyncArgs& a) {
   BallCandidateOptions candidates;
   // Enough play to cover the largest offset and then some.
   candidates.seconds = a.seconds > 0.0 ? a.seconds : std::max(15.0, 2.0 * a.max_offset + 5.0);
+  // The faint streaks' colour: the hint, orange when the ball is unknown.
+  segment::BallColour::Named(a.ball, &candidates.ball);
+  candidates.streak_max_fps = StreakMaxFps(a.streaks, candidates.streak_max_fps);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;
   options.offsets.fit_line_times = a.rolling_shutter;
@@ -93,6 +96,11 @@ std::function<int()> AddSyncCommand(CLI::App& app) {
   cmd->add_option("--seconds", args->seconds,
                   "Read this much of each recording (default: 2 x --max-offset + 5 s, at least 15)")
       ->check(CLI::Range(0.0, 3600.0));
+  cmd->add_option("--streaks", args->streaks,
+                  "Faint blur streaks as the ball's views too: auto (cameras of 40 fps or slower, "
+                  "whose long exposures leave a fast ball no sharp region), on, off")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   cmd->add_flag("--rolling-shutter", args->rolling_shutter,
                 "The cameras read their rows out one after another (phones, most webcams): find "
                 "each camera's line time from the ball too (added to the rig's line_time_s)");

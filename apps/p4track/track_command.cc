@@ -112,6 +112,9 @@ Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
                                                             : NamedClasses(a.ball);
   BallCandidateOptions candidates;
   candidates.seconds = std::max(15.0, 2.0 * a.max_offset + 5.0);
+  // The faint streaks' colour: the hint, orange when the ball is unknown.
+  segment::BallColour::Named(a.ball, &candidates.ball);
+  candidates.streak_max_fps = StreakMaxFps(a.streaks, candidates.streak_max_fps);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;
   options.offsets.fit_line_times = a.rolling_shutter;

@@ -38,4 +38,12 @@ std::optional<SphereDepthResult> PointFromSphereImage(const Camera& camera,
                                                       double diameter_px, EllipseAxis axis,
                                                       double ball_radius);
 
+// The other way, to first order: the diameter (px) of a ball of `ball_radius` (m) centred at the
+// world point, 2 r fx / depth; 0 at or behind the camera. What detectors expect to see there.
+inline double SphereDiameterPx(const Camera& camera, const Eigen::Vector3d& world_point,
+                               double ball_radius) {
+  const double depth = (camera.cam_from_world * world_point).z();
+  return depth > 0.0 ? 2.0 * ball_radius * camera.fx / depth : 0.0;
+}
+
 }  // namespace p4

@@ -24,6 +24,20 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> SphereEdges(const Camera& camera,
           camera.PixelFromNormalized(e2.head<2>() / e2.z())};
 }
 
+TEST(SphereDepth, TheExpectedDiameterIsTheImagesToFirstOrder) {
+  for (const Camera& camera : testing::ClubCameras()) {
+    const Eigen::Vector3d centre(0.3, -0.2, 0.2);
+    const auto [e1, e2] = SphereEdges(camera, centre, table::kBallRadius);
+    // 2 r fx / depth against the exact edges: within 3 % over the table (off-axis stretching,
+    // distortion), and nothing behind the camera.
+    EXPECT_NEAR(SphereDiameterPx(camera, centre, table::kBallRadius) / (e1 - e2).norm(), 1.0, 0.03)
+        << camera.name;
+    const Eigen::Vector3d behind =
+        camera.cam_from_world.Inverse() * Eigen::Vector3d(0.0, 0.0, -1.0);
+    EXPECT_EQ(SphereDiameterPx(camera, behind, table::kBallRadius), 0.0);
+  }
+}
+
 TEST(SphereDepth, RecoversTheCentreOnAndOffAxis) {
   for (const Camera& camera : testing::ClubCameras()) {
     for (const Eigen::Vector3d& centre :

@@ -8,11 +8,13 @@
 
 #include "p4/core/error.h"
 #include "p4/core/table.h"
+#include "p4/geometry/sphere_depth.h"
 #include "p4/io/video_reader.h"
 #include "p4/segment/background_model.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/foreground_finder.h"
 #include "p4/segment/pixel_access.h"
+#include "p4/segment/streak_finder.h"
 
 namespace p4 {
 
@@ -37,11 +39,12 @@ Eigen::Vector2d MovingCentre(const ImageView& image, const segment::BackgroundMo
 }  // namespace
 
 bool BallCandidateOptions::IsValid(std::string* error) const {
-  if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_speed_px_s > 0.0)) {
+  if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_speed_px_s > 0.0) ||
+      !(streak_max_fps >= 0.0)) {
     if (error) *error = "ball candidates: seconds, per_frame, sizes must be positive";
     return false;
   }
-  return true;
+  return ball.IsValid(error);
 }
 
 std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
@@ -71,6 +74,13 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
       const double fps = reader.info().fps > 0.0 ? reader.info().fps : 30.0;
       const double longest_streak = options.max_speed_px_s / fps;
       segment::BlobFinder finder;
+      // The ball's size over the table's middle, a little above it (the streaks' template).
+      const double diameter =
+          SphereDiameterPx(camera, Eigen::Vector3d(0.0, 0.0, 0.2), table::kBallRadius);
+      const bool streaks = fps <= options.streak_max_fps && diameter > 0.0;
+      segment::StreakFinder streak_finder;
+      segment::StreakSearch streak_search;
+      std::vector<segment::FoundStreak> found;
       // What differs from a background learnt as the frames come (the colour alone finds
       // banners, shirts and lettering of the ball's colour; with AnyColour, motion alone).
       segment::BackgroundModel background(camera.width, camera.height, {});
@@ -89,13 +99,25 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
         if (!first) first = pts;
         if (ToSeconds(pts - *first) > options.seconds) break;
         int n = 0;
+        found.clear();
         if (background.ready()) {
           const segment::BlockMask moving =
               foreground.DifferingBlocks(view, background, {}, options.moving_sigmas, false);
           n = finder.Find(view, lut, {}, segment, &regions, &moving);
+          if (streaks) {
+            segment::FindStreaks(view, background, options.ball, diameter, {}, {}, &streak_finder,
+                                 &streak_search, &found);
+          }
         }
         background.Update(view);
         sync::FrameCandidates frame{ToSeconds(pts), {}};
+        // The streaks first: each stood out of the picture's own clutter as a streak.
+        for (const segment::FoundStreak& s : found) {
+          if (static_cast<int>(frame.pixels.size()) < options.per_frame) {
+            frame.pixels.emplace_back(s.hit.cx, s.hit.cy);
+          }
+        }
+        const auto streaks_end = frame.pixels.size();
         seen.clear();
         for (int k = 0; k < n; ++k) {
           const segment::Region& r = regions[k];
@@ -109,7 +131,11 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
           const bool still = std::any_of(last.begin(), last.end(), [&](const Eigen::Vector2d& p) {
             return (p - centre).norm() < options.still_px;
           });
-          if (!still) frame.pixels.push_back(centre);
+          // A region on a streak already taken is the same ball.
+          const bool taken =
+              std::any_of(frame.pixels.begin(), frame.pixels.begin() + streaks_end,
+                          [&](const Eigen::Vector2d& p) { return (p - centre).norm() < diameter; });
+          if (!still && !taken) frame.pixels.push_back(centre);
         }
         std::swap(last, seen);
         out[c].push_back(std::move(frame));

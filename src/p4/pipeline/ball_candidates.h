@@ -3,8 +3,9 @@
 // (paper §3.1) where it differs from a background model learnt as the frames come (with
 // segment::AnyColour(), whatever moves), regions of the ball's size for the camera (nearer than
 // 1 m is too big, a few pixels across is the least) that were not in the last frame, their
-// centroids. Hands and heads that pass make 2D tracks too: any real moving thing that both
-// cameras see tells their offset. For sync/rig_sync.h.
+// centroids; with a camera of 40 fps or slower, the middles of faint streaks too. Hands and heads
+// that pass make 2D tracks too: any real moving thing that both cameras see tells their offset. For
+// sync/rig_sync.h.
 #pragma once
 
 #include <functional>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "p4/geometry/rig.h"
+#include "p4/segment/ball_colour.h"
 #include "p4/segment/color_classes.h"
 #include "p4/sync/rig_sync.h"
 #include "p4/sync/track_2d.h"
@@ -27,6 +29,12 @@ struct BallCandidateOptions {
   double max_speed_px_s = 4000.0;
   double still_px = 1.5;       // a region this near one of the last frame's did not move: dropped
   double moving_sigmas = 3.0;  // pixels must differ from the learnt background by this much
+  // Cameras this slow or slower also give the faint streaks anywhere in the picture
+  // (segment::FindStreaks, as the tracker's --streaks auto): a webcam's exposure of 1/60-1/30 s
+  // leaves a fast ball a streak that no colour region finds, and then too few of the ball's
+  // views for the offset. 0: never.
+  double streak_max_fps = 40.0;
+  segment::BallColour ball;  // the streaks' colour: the hint (--ball), orange when unknown
 
   bool IsValid(std::string* error) const;
 };

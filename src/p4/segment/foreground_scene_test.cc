@@ -645,21 +645,17 @@ TEST(StreakSearchScene, NothingWhereThereIsNoBall) {
   EXPECT_EQ(found, 0);
 }
 
-// The whole-image finder's candidates, each measured by the streak search as the tracker does
-// (FrameSetTracker::StreakViews): the hits.
+// The whole-image finder's candidates, each measured by the streak search (FindStreaks, as the
+// tracker and the sync's candidates take them): the hits.
 std::vector<StreakHit> StreaksAnywhere(Scene& scene, StreakFinder& finder, double diameter) {
   StreakSearch search;
-  std::vector<StreakCandidate> candidates;
-  finder.Find(scene.frame().View(), scene.background(), BallColour::Orange(), {}, &candidates);
+  std::vector<FoundStreak> found;
+  FindStreaks(scene.frame().View(), scene.background(), BallColour::Orange(), diameter, {}, {},
+              &finder, &search, &found);
   std::vector<StreakHit> hits;
-  StreakSearchOptions options;
-  options.search_px = 4.0;
-  for (const StreakCandidate& c : candidates) {
-    if (const auto hit = search.Find(scene.frame().View(), scene.background(), BallColour::Orange(),
-                                     c.cx, c.cy, std::cos(c.angle), std::sin(c.angle),
-                                     1.5 * c.length_px, diameter, options)) {
-      hits.push_back(*hit);
-    }
+  for (const FoundStreak& f : found) {
+    EXPECT_GT(f.diameter_px, 0.0);
+    hits.push_back(f.hit);
   }
   return hits;
 }

@@ -195,4 +195,25 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
   return static_cast<int>(out->size());
 }
 
+int FindStreaks(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
+                double diameter_px, const StreakFinderOptions& finder_options,
+                const StreakSearchOptions& search_options, StreakFinder* finder,
+                StreakSearch* search, std::vector<FoundStreak>* out) {
+  out->clear();
+  if (!(diameter_px > 0.0)) return 0;
+  std::vector<StreakCandidate> candidates;
+  finder->Find(image, background, ball, finder_options, &candidates);
+  StreakSearchOptions o = search_options;
+  // The candidate's middle is a cell's centre: the streak's lies within a cell of it.
+  o.search_px = std::min(o.search_px, 2.0 * finder_options.cell_blocks);
+  for (const StreakCandidate& s : candidates) {
+    if (s.length_px < 2.0 * diameter_px) continue;
+    const auto hit = search->Find(image, background, ball, s.cx, s.cy, std::cos(s.angle),
+                                  std::sin(s.angle), 1.5 * s.length_px, diameter_px, o);
+    if (!hit) continue;
+    out->push_back({*hit, diameter_px * std::sqrt(hit->share / hit->expected_share)});
+  }
+  return static_cast<int>(out->size());
+}
+
 }  // namespace p4::segment

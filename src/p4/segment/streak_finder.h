@@ -30,6 +30,7 @@
 #include "p4/core/image.h"
 #include "p4/segment/background_model.h"
 #include "p4/segment/ball_colour.h"
+#include "p4/segment/streak_search.h"
 
 namespace p4::segment {
 
@@ -82,5 +83,22 @@ class StreakFinder {
   std::vector<int> best_dir_, best_half_;
   std::vector<StreakCandidate> last_seen_;  // the last frame's local bests
 };
+
+// A faint streak found with no prediction, measured.
+struct FoundStreak {
+  StreakHit hit;             // measured by StreakSearch about the finder's candidate
+  double diameter_px = 0.0;  // the ball's, from the streak's share of its pixels
+};
+
+// The whole picture's faint streaks: the finder's candidates (above) longer than two of the
+// ball's expected diameters (a shorter one is no faint streak: the colour regions find that
+// ball), each measured by the search about the candidate (its middle within a cell, its length
+// at most 1.5 times the candidate's). A disc of d px smeared along a streak shares about d^2 of a
+// template d0 wide, so d = d0 sqrt(share / expected share). Returns their number, best first.
+// Preconditions as StreakFinder::Find; `diameter_px` > 0.
+int FindStreaks(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
+                double diameter_px, const StreakFinderOptions& finder_options,
+                const StreakSearchOptions& search_options, StreakFinder* finder,
+                StreakSearch* search, std::vector<FoundStreak>* out);
 
 }  // namespace p4::segment

@@ -90,8 +90,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
 namespace {
 
 double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
-  const double depth = (camera.cam_from_world * point).z();
-  return depth > 0.0 ? 2.0 * table::kBallRadius * camera.fx / depth : 0.0;
+  return SphereDiameterPx(camera, point, table::kBallRadius);
 }
 
 // Camera c's view of a faint streak: its middle, the ball's diameter given to it.
@@ -152,24 +151,12 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
 void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
   // The ball's size over the table's middle, a little above it.
   const double diameter = ExpectedDiameterPx(rig_.cameras[c], Eigen::Vector3d(0.0, 0.0, 0.2));
-  if (!(diameter > 0.0)) return;
-  std::vector<segment::StreakCandidate> found;
-  streak_finders_[c].Find(image, backgrounds_[c], options_.ball_colour, options_.streak_finder,
-                          &found);
-  for (const segment::StreakCandidate& s : found) {
-    // Shorter than two diameters: no faint streak (the regions find such a ball).
-    if (s.length_px < 2.0 * diameter) continue;
-    // The candidate's middle is a cell's centre: the streak's lies within a cell of it.
-    segment::StreakSearchOptions o = options_.streak;
-    o.search_px = std::min(o.search_px, 2.0 * options_.streak_finder.cell_blocks);
-    const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, s.cx,
-                                              s.cy, std::cos(s.angle), std::sin(s.angle),
-                                              1.5 * s.length_px, diameter, o);
-    if (!hit) continue;
-    // A disc of d px smeared along the streak shares about d^2 of a template d0 wide: d from the
-    // share's ratio to what d0 would give.
-    out->push_back(
-        StreakDetection(c, *hit, diameter * std::sqrt(hit->share / hit->expected_share)));
+  std::vector<segment::FoundStreak> found;
+  segment::FindStreaks(image, backgrounds_[c], options_.ball_colour, diameter,
+                       options_.streak_finder, options_.streak, &streak_finders_[c],
+                       &streak_searches_[c], &found);
+  for (const segment::FoundStreak& s : found) {
+    out->push_back(StreakDetection(c, s.hit, s.diameter_px));
   }
 }
 
