@@ -106,7 +106,7 @@ TEST_F(SyncCommand, RefusesWhenTooLittleOfTheBallIsSeen) {
 // started 0.2368 s before the first and drifting by -47.8 ppm, a few frames lost, stamps
 // jittered: the suite's unsync-webcam tuning scene 4. The colour regions alone see too little of
 // the ball to decide (12 points agree, 17 are needed); the faint streaks (--streaks auto: cameras
-// of 40 fps or slower) tell the offset (measured: -0.238132 s +- 0.73 ms, 25 points agree).
+// of 40 fps or slower) tell the offset (measured: -0.237759 s +- 0.80 ms, 22 points agree).
 TEST(SyncWebcams, FaintStreaksTellTheOffset) {
   const fs::path dir =
       fs::temp_directory_path() / ("p4_sync_webcams_" + std::to_string(::getpid()));

@@ -111,13 +111,6 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
         }
         background.Update(view);
         sync::FrameCandidates frame{ToSeconds(pts), {}};
-        // The streaks first: each stood out of the picture's own clutter as a streak.
-        for (const segment::FoundStreak& s : found) {
-          if (static_cast<int>(frame.pixels.size()) < options.per_frame) {
-            frame.pixels.emplace_back(s.hit.cx, s.hit.cy);
-          }
-        }
-        const auto streaks_end = frame.pixels.size();
         seen.clear();
         for (int k = 0; k < n; ++k) {
           const segment::Region& r = regions[k];
@@ -131,11 +124,19 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
           const bool still = std::any_of(last.begin(), last.end(), [&](const Eigen::Vector2d& p) {
             return (p - centre).norm() < options.still_px;
           });
-          // A region on a streak already taken is the same ball.
-          const bool taken =
-              std::any_of(frame.pixels.begin(), frame.pixels.begin() + streaks_end,
-                          [&](const Eigen::Vector2d& p) { return (p - centre).norm() < diameter; });
-          if (!still && !taken) frame.pixels.push_back(centre);
+          if (!still) frame.pixels.push_back(centre);
+        }
+        // The streaks come beside the regions, not in their places: a camera that exposes
+        // briefly sees the ball sharp (its streak hits are the hall's clutter), a webcam's
+        // regions are often the hall's clutter and its ball a streak. None on a region taken
+        // (the same ball).
+        const std::size_t regions_end = frame.pixels.size();
+        for (const segment::FoundStreak& f : found) {
+          const Eigen::Vector2d p(f.hit.cx, f.hit.cy);
+          const bool taken = std::any_of(
+              frame.pixels.begin(), frame.pixels.begin() + static_cast<std::ptrdiff_t>(regions_end),
+              [&](const Eigen::Vector2d& q) { return (q - p).norm() < diameter; });
+          if (!taken) frame.pixels.push_back(p);
         }
         std::swap(last, seen);
         out[c].push_back(std::move(frame));

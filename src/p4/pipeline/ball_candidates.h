@@ -32,7 +32,8 @@ struct BallCandidateOptions {
   // Cameras this slow or slower also give the faint streaks anywhere in the picture
   // (segment::FindStreaks, as the tracker's --streaks auto): a webcam's exposure of 1/60-1/30 s
   // leaves a fast ball a streak that no colour region finds, and then too few of the ball's
-  // views for the offset. 0: never.
+  // views for the offset. They come beside the per_frame regions (up to the finder's 8), not in
+  // their places. 0: never.
   double streak_max_fps = 40.0;
   segment::BallColour ball;  // the streaks' colour: the hint (--ball), orange when unknown
 
