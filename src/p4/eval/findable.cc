@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "p4/core/table.h"
+#include "p4/geometry/sphere_depth.h"
 
 namespace p4 {
 
@@ -54,7 +55,7 @@ void FindableCounter::Add(int camera, TimeNs t, const ImageView& image) {
       const Eigen::Vector2d motion = (*b - *a) * (exposure_s_ / (2.0 * h));
       const Eigen::Vector2d direction =
           motion.norm() > 1e-9 ? Eigen::Vector2d(motion.normalized()) : Eigen::Vector2d::UnitX();
-      const double diameter = 2.0 * table::kBallRadius * cam.fx / depth;
+      const double diameter = SphereDiameterPx(cam, row->position, table::kBallRadius);
       found_[k][camera] =
           searches_[camera]
               .Find(image, background, ball_, centre->x(), centre->y(), direction.x(),

@@ -41,7 +41,11 @@ Eigen::Vector2d MovingCentre(const ImageView& image, const segment::BackgroundMo
 bool BallCandidateOptions::IsValid(std::string* error) const {
   if (!(seconds > 0.0) || per_frame < 1 || !(min_diameter_px > 0.0) || !(max_speed_px_s > 0.0) ||
       !(streak_max_fps >= 0.0)) {
-    if (error) *error = "ball candidates: seconds, per_frame, sizes must be positive";
+    if (error) {
+      *error =
+          "ball candidates: seconds, per_frame, sizes must be positive, streak_max_fps not "
+          "negative";
+    }
     return false;
   }
   return ball.IsValid(error);
