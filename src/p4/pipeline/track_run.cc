@@ -132,7 +132,12 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   }
   // New tracks are confirmed by the ball's flight: the rows wait for the revisions that brings.
   std::optional<track::ResultHold> hold;
-  if (options.confirm_tracks && rig.size() >= 2) hold.emplace(options.initiator.max_span_s);
+  if (options.confirm_tracks) hold.emplace(options.initiator.max_span_s);
+  // Confirmed first (the hold), then smoothed (one camera).
+  const auto smooth = [&](track::FrameSetResult r) {
+    if (!smoother) return record(r);
+    for (const auto& s : smoother->Push(std::move(r))) record(s);
+  };
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   FrameSet set;
@@ -171,12 +176,10 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     }
     const track::FrameSetResult result = tracker.Process(set.t, set.images, set.times);
     published.clear();
-    if (smoother) {
-      for (const auto& r : smoother->Push(result)) record(r);
-    } else if (hold) {
-      for (const auto& r : hold->Push(result)) record(r);
+    if (hold) {
+      for (auto& r : hold->Push(result)) smooth(std::move(r));
     } else {
-      record(result);
+      smooth(result);
     }
     if (extras.live) {
       extras.live->OnFrameSet(set, result, published, game.enabled ? &referee.score() : nullptr);
@@ -205,11 +208,11 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   take_source_news();
   // Stopped while waiting for a source to come back: Next() returned at the stop.
   if (extras.stop && extras.stop->load()) summary.stopped = true;
+  if (hold) {
+    for (auto& r : hold->Flush()) smooth(std::move(r));
+  }
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
-  }
-  if (hold) {
-    for (const auto& r : hold->Flush()) record(r);
   }
   if (game.enabled) {
     publish(detector.Flush());

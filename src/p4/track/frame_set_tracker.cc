@@ -72,8 +72,8 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       tracker_options_(options.tracker),
       initiator_(options.initiator) {
   // New tracks come from the initiator: a refused measurement must not restart the filter.
+  if (options.confirm_tracks) tracker_options_.restart_on_refusal = false;
   if (options.confirm_tracks && rig.size() >= 2) {
-    tracker_options_.restart_on_refusal = false;
     tracker_options_.one_view_holds_track = false;
     // The lone views' rows wait as long as the hold (the initiator's span): so do the steps.
     if (options.lone_view_depth_sigma > 0.0) {
@@ -407,7 +407,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;
   const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
-  const bool confirming = options_.confirm_tracks && n >= 2;
+  const bool confirming = options_.confirm_tracks;
   std::optional<Tracklet> confirmed;
   // Detection (camera c, candidate k) is result.detections[offset[c] + k] (flattened below).
   std::vector<int> offset(n + 1, 0);
@@ -416,6 +416,13 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (confirming) {
     // Every distinct candidate of this time-stamp goes to the initiator, best first.
     std::vector<TrackletPoint> points;
+    // One camera: every candidate, placed by its diameter (a streak's is the expected one: it
+    // says nothing of the depth).
+    for (int k = 0; n == 1 && k < static_cast<int>(candidates[0].size()); ++k) {
+      const Detection& d = candidates[0][k];
+      if (d.streak) continue;
+      if (auto m = SphereMeasurement(rig_.cameras[0], d)) points.push_back({t, *m, {k}});
+    }
     std::vector<bool> taken_detection(offset[n], false);
     for (const Hypothesis& h : hypotheses) {
       if (h.fragment) continue;  // a new track starts from whole balls
@@ -725,32 +732,17 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   double best_score = 0.0;
   std::pair<int, int> best_id;
   for (int c = 0; c < rig_.size(); ++c) {
-    const Camera& camera = rig_.cameras[c];
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      // The detection's diameter is the blur-proof minor axis, across the image radius.
-      const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px,
-                                               EllipseAxis::kAcrossRadius, table::kBallRadius);
-      if (!sphere) continue;
-      const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
-      if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0)
-        continue;
+      const auto m = SphereMeasurement(rig_.cameras[c], d);
+      if (!m) continue;
       // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
       double score = -static_cast<double>(d.area_px);
       if (predicted) {
-        score = (sphere->point - *predicted).norm();
+        score = (m->position - *predicted).norm();
         if (score > options_.max_prediction_distance) continue;
       }
       if (best && score >= best_score) continue;
-      Measurement m;
-      m.cameras = 1;
-      const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
-      const Eigen::Matrix3d across_ray = Eigen::Matrix3d::Identity() - ray * ray.transpose();
-      const double across = sphere->distance * options_.pixel_sigma / camera.fx;
-      m.position = sphere->point;
-      const double along =
-          sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
-      m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
       best = m;
       best_score = score;
       best_id = {c, k};
@@ -758,6 +750,27 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   }
   if (best) *used = {best_id};
   return best;
+}
+
+std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& camera,
+                                                              const Detection& d) const {
+  // The detection's diameter is the blur-proof minor axis, across the image radius.
+  const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px,
+                                           EllipseAxis::kAcrossRadius, table::kBallRadius);
+  if (!sphere) return std::nullopt;
+  const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
+  if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0) {
+    return std::nullopt;
+  }
+  Measurement m;
+  m.cameras = 1;
+  const Eigen::Vector3d ray = (sphere->point - camera.Center()).normalized();
+  const Eigen::Matrix3d across_ray = Eigen::Matrix3d::Identity() - ray * ray.transpose();
+  const double across = sphere->distance * options_.pixel_sigma / camera.fx;
+  m.position = sphere->point;
+  const double along = sphere->distance * options_.diameter_sigma / std::max(1.0, d.diameter_px);
+  m.covariance = along * along * ray * ray.transpose() + across * across * across_ray;
+  return m;
 }
 
 std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(

@@ -137,10 +137,11 @@ struct FrameSetOptions {
   // results either way; pays off for several large images searched whole.
   int threads = 1;
   TrackerOptions tracker;
-  // With two cameras or more, a new track starts only from candidates that fly (TrackInitiator):
-  // until then a time-stamp's measurement is tentative, and the time-stamps of the tracklet that
-  // confirms it are revised (FrameSetResult::revisions; ResultHold applies them). Off: the
-  // filter starts from any two measurements that agree (the paper's way, and one camera's).
+  // A new track starts only from candidates that fly (TrackInitiator; one camera's placed by
+  // their diameters, judged along and across the ray each by its own noise): until then a
+  // time-stamp's measurement is tentative, and the time-stamps of the tracklet that confirms it
+  // are revised (FrameSetResult::revisions; ResultHold applies them). Off: the filter starts
+  // from any two measurements that agree (the paper's way).
   bool confirm_tracks = true;
   TrackInitiatorOptions initiator;
 
@@ -267,6 +268,9 @@ class FrameSetTracker {
   std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         std::vector<std::pair<int, int>>* used) const;
+  // A view placed by its diameter (paper §3.2), known across its ray to pixel_sigma and along it
+  // to diameter_sigma; nullopt outside the hall (6 x 4 m about the table's centre, floor to 3 m).
+  std::optional<Measurement> SphereMeasurement(const Camera& camera, const Detection& d) const;
   // Several cameras, a track, no two views that agree: the view nearest the predicted one in
   // its image (Mahalanobis, the prediction's covariance projected; lone_view_gate_chi2,
   // lone_view_image_sigma), of the size the predicted depth gives; its measurement on its ray at

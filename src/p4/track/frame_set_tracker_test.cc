@@ -447,6 +447,42 @@ TEST_F(FrameSetTrackerTest, OneCameraRigPlacesTheBallByItsDiameter) {
   EXPECT_LT((result.measurement->position - Ball(0)).norm(), 0.15 * distance);
 }
 
+// One camera, an orange mark larger than the ball lying still on the floor: the paper's
+// "largest region" would start the track there; it does not fly, so the track starts on the ball
+// once it has flown a few frames (placed by its diameter), and the rows before are revised.
+TEST_F(FrameSetTrackerTest, OneCameraStartsItsTrackOnTheFlyingBallNotTheLargestRegion) {
+  Rig one;
+  one.cameras = {rig_.cameras[0]};
+  FrameSetTracker tracker(one, segment::DefaultOrangeBall(), {});
+  const Camera& camera = one.cameras[0];
+  const auto mark = camera.Project(Eigen::Vector3d(0.6, -0.9, table::kFloorZ));
+  ASSERT_TRUE(mark.has_value());
+  std::optional<int> started;
+  int revised = 0;
+  for (int k = 0; k < 24; ++k) {
+    const Eigen::Vector3d ball = Ball(k);
+    auto views = Frames(ball, k);
+    PaintOrange(0, mark->x(), mark->y(), 6.0);
+    const auto result =
+        tracker.Process(FromSeconds(k / 120.0), std::vector<std::optional<ImageView>>{views[0]});
+    if (!started && result.new_track) started = k;
+    if (!started) {
+      EXPECT_FALSE(result.state.has_value()) << k;
+      continue;
+    }
+    revised += static_cast<int>(result.revisions.size());
+    ASSERT_TRUE(result.state.has_value()) << k;
+    // On the ball's ray: a pixel or two in its image (the depth is the diameter's).
+    const auto seen = camera.Project(result.state->position);
+    const auto truth = camera.Project(ball);
+    ASSERT_TRUE(seen && truth);
+    EXPECT_LT((*seen - *truth).norm(), 2.0) << k;
+  }
+  ASSERT_TRUE(started.has_value());
+  EXPECT_LE(*started, 8);
+  EXPECT_GE(revised, 3);
+}
+
 // A webcam rig at 25 fps: camera 1 loses the ball for one frame (k = 6) in a flight that both
 // see otherwise. The lone view of camera 0 fixes the ball's direction; one frame after a
 // two-view fix the filter knows its depth along that ray to some 5 cm only, too loose for a row,

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 
@@ -15,11 +16,13 @@ bool TrackInitiatorOptions::IsValid(std::string* error) const {
       !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) || fall_points < 4 ||
       !(fit_tolerance > 0.0) || !(fit_sigmas >= 0.0) || !(max_span_s > max_gap_s) ||
       !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 || min_confirm_points < 2 ||
-      min_confirm_points > confirm_points || !(confirm_span_s > 0.0)) {
+      min_confirm_points > confirm_points || !(confirm_span_s > 0.0) ||
+      !(min_travel_sigmas >= 0.0) || !(fall_max_curvature_sigma > 0.0)) {
     if (error) {
       *error =
           "track initiator: need 2 <= min_confirm_points <= confirm_points, positive gate, gap, "
-          "confirming span, speed and tracklets, and a span longer than the gap";
+          "confirming span, speed, tracklets and curvature sigma, travel sigmas >= 0, and a span "
+          "longer than the gap";
     }
     return false;
   }
@@ -30,11 +33,45 @@ TrackInitiator::TrackInitiator(const TrackInitiatorOptions& options) : options_(
 
 namespace {
 
-double Sigma(const Measurement& m) { return std::sqrt(std::max(0.0, m.covariance.trace() / 3.0)); }
+// The points' noise along three axes (the eigenvectors of the newest point's covariance): per
+// axis the largest sigma of any point. Views of two cameras or more are as good in every
+// direction (one sigma, any axes); one camera's are known along its ray from the diameter only,
+// ~50x worse than across it, and every test below is made per axis.
+struct NoiseAxes {
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns
+  Eigen::Vector3d sigma = Eigen::Vector3d::Zero();     // m
+};
+
+NoiseAxes AxesOf(std::span<const TrackletPoint* const> points) {
+  NoiseAxes n;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(points.back()->measurement.covariance);
+  if (eigen.info() == Eigen::Success) n.axes = eigen.eigenvectors();
+  for (const TrackletPoint* p : points) {
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d e = n.axes.col(i);
+      n.sigma(i) =
+          std::max(n.sigma(i), std::sqrt(std::max(0.0, e.dot(p->measurement.covariance * e))));
+    }
+  }
+  return n;
+}
+
+NoiseAxes AxesOf(std::span<const TrackletPoint> points) {
+  std::vector<const TrackletPoint*> ptrs;
+  for (const TrackletPoint& p : points) ptrs.push_back(&p);
+  return AxesOf(ptrs);
+}
+
+// |d| in units of `scale` per axis: <= 1 inside the ellipsoid of those semi-axes.
+double Scaled(const NoiseAxes& n, const Eigen::Vector3d& scale, const Eigen::Vector3d& d) {
+  return (n.axes.transpose() * d).cwiseQuotient(scale).norm();
+}
 
 // RMS distance of the points from the best flight through them: p0 + v t + a t^2 / 2 with a
-// gravity and the drag at the mean velocity (first fitted without drag), by least squares.
-double FlightMisfit(std::span<const TrackletPoint> points, double gravity, double drag_per_mass) {
+// gravity and the drag at the mean velocity (first fitted without drag), by least squares; each
+// residual in units of `scale` along the noise axes (one scale for all: the fit is the same).
+double FlightMisfit(std::span<const TrackletPoint> points, const NoiseAxes& noise,
+                    const Eigen::Vector3d& scale, double gravity, double drag_per_mass) {
   const auto n = static_cast<Eigen::Index>(points.size());
   Eigen::MatrixXd a(n, 2);
   Eigen::MatrixXd b(n, 3);
@@ -56,17 +93,20 @@ double FlightMisfit(std::span<const TrackletPoint> points, double gravity, doubl
     const Eigen::Vector3d v = fit.row(1).transpose();
     accel = Eigen::Vector3d(0.0, 0.0, -gravity) - drag_per_mass * v.norm() * v;
   }
-  return std::sqrt((a * fit - b).squaredNorm() / static_cast<double>(n));
+  const Eigen::MatrixXd scaled = (a * fit - b) * noise.axes * scale.cwiseInverse().asDiagonal();
+  return std::sqrt(scaled.squaredNorm() / static_cast<double>(n));
 }
 
 }  // namespace
 
-std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& tracklet,
-                                                           TimeNs t) const {
+TrackInitiator::Gate TrackInitiator::Predict(const Tracklet& tracklet, TimeNs t) const {
   const TrackletPoint& last = tracklet.points.back();
   const double dt = ToSeconds(t - last.t);
   const Eigen::Vector3d& p1 = last.measurement.position;
-  if (tracklet.points.size() == 1) return {p1, options_.gate + options_.max_speed * dt};
+  if (tracklet.points.size() == 1) {
+    return {p1, Eigen::Matrix3d::Identity(),
+            Eigen::Vector3d::Constant(options_.gate + options_.max_speed * dt)};
+  }
   const TrackletPoint& before = tracklet.points[tracklet.points.size() - 2];
   const double dt01 = ToSeconds(last.t - before.t);
   // The mean velocity is the one at the middle of the interval: carried to the last point, then
@@ -78,9 +118,10 @@ std::pair<Eigen::Vector3d, double> TrackInitiator::Predict(const Tracklet& track
   Eigen::Vector3d predicted = p1;
   MidpointStep<double>(&predicted, &v, no_spin, dt, options_.gravity, options_.drag_per_mass);
   // The velocity is as good as the two points' difference: its error grows with dt / dt01.
-  const double sigma = std::max(Sigma(last.measurement), Sigma(before.measurement));
-  const double radius = options_.gate + options_.gate_sigmas * sigma * (1.0 + 1.5 * dt / dt01);
-  return {predicted, radius};
+  const std::array<const TrackletPoint*, 2> two{&before, &last};
+  const NoiseAxes noise = AxesOf(two);
+  const double growth = options_.gate_sigmas * (1.0 + 1.5 * dt / dt01);
+  return {predicted, noise.axes, (options_.gate + growth * noise.sigma.array()).matrix()};
 }
 
 bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
@@ -96,21 +137,29 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   // turn, fits none (older points may lie before a bounce).
   const auto newest =
       std::span<const TrackletPoint>(points).last(std::min(n, options_.confirm_points));
-  double sigma = 0.0;
-  for (const TrackletPoint& p : newest) sigma = std::max(sigma, Sigma(p.measurement));
-  if (FlightMisfit(newest, options_.gravity, options_.drag_per_mass) >
-      options_.fit_tolerance + options_.fit_sigmas * sigma) {
+  const NoiseAxes noise = AxesOf(newest);
+  const Eigen::Vector3d fit_scale =
+      (options_.fit_tolerance + options_.fit_sigmas * noise.sigma.array()).matrix();
+  if (FlightMisfit(newest, noise, fit_scale, options_.gravity, options_.drag_per_mass) > 1.0) {
     return false;
   }
   const Eigen::Vector3d travel =
       points.back().measurement.position - points.front().measurement.position;
   const double span = ToSeconds(points.back().t - points.front().t);
-  if (travel.norm() >= options_.min_travel && travel.norm() >= options_.min_travel_speed * span) {
+  // The travel must also stand out of the two ends' noise (one camera's depth alone wanders by
+  // more than min_travel).
+  const std::array<const TrackletPoint*, 2> ends{&points.front(), &points.back()};
+  const NoiseAxes end_noise = AxesOf(ends);
+  const Eigen::Vector3d travel_sigma =
+      (std::sqrt(2.0) * end_noise.sigma.array().max(1e-9)).matrix();
+  const bool travelled = Scaled(end_noise, travel_sigma, travel) >= options_.min_travel_sigmas;
+  if (travelled && travel.norm() >= options_.min_travel &&
+      travel.norm() >= options_.min_travel_speed * span) {
     return true;
   }
   // Rising straight up (a serve's toss): min_travel up over fall_span_s or more, however slowly
   // (the newest points fit a flight with gravity's pull, above).
-  if (options_.toss_max_lean > 0.0 && span >= options_.fall_span_s &&
+  if (travelled && options_.toss_max_lean > 0.0 && span >= options_.fall_span_s &&
       travel.z() >= options_.min_travel &&
       travel.head<2>().norm() <= options_.toss_max_lean * travel.z()) {
     return true;
@@ -127,7 +176,15 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   const Eigen::Vector3d fit = a.colPivHouseholderQr().solve(z);
   const double rms = std::sqrt((a * fit - z).squaredNorm() / static_cast<double>(points.size()));
   const double half_g = 0.5 * options_.gravity;
-  return std::abs(fit(2) + half_g) <= options_.fall_tolerance * half_g && rms <= 2.0 * sigma;
+  // The heights' noise, and what it leaves of the curvature (its sigma by least squares).
+  double sigma_z = 0.0;
+  for (const TrackletPoint& p : newest) {
+    sigma_z = std::max(sigma_z, std::sqrt(std::max(0.0, p.measurement.covariance(2, 2))));
+  }
+  const Eigen::Matrix3d normal = a.transpose() * a;
+  const double curvature_sigma = sigma_z * std::sqrt(std::max(0.0, normal.inverse()(2, 2)));
+  return std::abs(fit(2) + half_g) <= options_.fall_tolerance * half_g && rms <= 2.0 * sigma_z &&
+         curvature_sigma <= options_.fall_max_curvature_sigma;
 }
 
 std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletPoint> candidates) {
@@ -160,11 +217,12 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   };
   std::vector<Pair> pairs;
   for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
-    const auto [predicted, radius] = Predict(tracklets_[i], t);
+    const Gate gate = Predict(tracklets_[i], t);
+    const NoiseAxes axes{gate.axes, gate.radii};
     const int rank = std::min<int>(3, static_cast<int>(tracklets_[i].points.size()));
     for (int j = 0; j < static_cast<int>(candidates.size()); ++j) {
-      const double d = (candidates[j].measurement.position - predicted).norm();
-      if (d <= radius) pairs.push_back({i, j, rank, d / radius});
+      const double d = Scaled(axes, gate.radii, candidates[j].measurement.position - gate.centre);
+      if (d <= 1.0) pairs.push_back({i, j, rank, d});
     }
   }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {

@@ -37,6 +37,9 @@ struct TrackInitiatorOptions {
   // ...at this mean speed at least (m/s): slower, a hand or a shirt moves as far; a slow ball
   // (the top of a toss) confirms by its fall below.
   double min_travel_speed = 1.5;
+  // ...and stands out of its two ends' noise by this many sigmas along the noise axes (one
+  // camera's depth from the diameter alone wanders by more than min_travel).
+  double min_travel_sigmas = 4.0;
   // A slow ball (a serve toss near its top) travels less, but falls as nothing else in the hall
   // does: a tracklet spanning fall_span_s whose heights fit a parabola with gravity's curvature
   // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) and has
@@ -46,6 +49,10 @@ struct TrackInitiatorOptions {
   double fall_span_s = 0.1;
   double fall_tolerance = 0.3;
   int fall_points = 6;
+  // ...and the heights must be known well enough to show it: the fitted curvature's sigma (from
+  // the heights' sigma) at most this (m/s^2; g/2 is 4.9). One camera's heights, known only to
+  // centimetres along its ray, cannot confirm by falling.
+  double fall_max_curvature_sigma = 3.0;
   // A serve's toss rises slowly from the first (a legal toss leaves the hand at 1.8 m/s or more
   // and gravity takes 0.4 m/s off it in 0.04 s: its first 4 points at 25 fps average 1.2-1.4
   // m/s, under min_travel_speed) and nearly straight up: a tracklet spanning fall_span_s that
@@ -104,8 +111,14 @@ class TrackInitiator {
   int size() const { return static_cast<int>(tracklets_.size()); }
 
  private:
-  // Where the tracklet sends the ball at t and how far from it a point may lie (m).
-  std::pair<Eigen::Vector3d, double> Predict(const Tracklet& tracklet, TimeNs t) const;
+  // Where the tracklet sends the ball at t and how far from it a point may lie: an ellipsoid of
+  // semi-axes `radii` (m) along the columns of `axes` (a sphere for views of several cameras).
+  struct Gate {
+    Eigen::Vector3d centre;
+    Eigen::Matrix3d axes;
+    Eigen::Vector3d radii;
+  };
+  Gate Predict(const Tracklet& tracklet, TimeNs t) const;
   bool Confirmed(const Tracklet& tracklet) const;
 
   TrackInitiatorOptions options_;
