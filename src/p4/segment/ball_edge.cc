@@ -1,5 +1,6 @@
 #include "p4/segment/ball_edge.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -119,7 +120,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
   std::vector<double> colours(3 * static_cast<std::size_t>(n) * o.directions), profile, ring;
   std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
-  std::vector<double> d(static_cast<std::size_t>(half));
+  std::vector<double> d(static_cast<std::size_t>(half)), extent(d.size());
   std::vector<uint8_t> use(d.size());
   // The rays' directions: i and i + half are opposite.
   std::vector<double> ux(static_cast<std::size_t>(o.directions)), uy(ux.size());
@@ -168,6 +169,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       const auto j = static_cast<std::size_t>(i);
       use[j] = r1 > 0.0 && r2 > 0.0;
       d[j] = 0.5 * (r1 - r2);  // the centre's offset along the ray
+      extent[j] = r1 + r2;     // the shape's width along it
     }
     // d_i = offset . u_i by least squares, dropping pairs far from the fit.
     double ox = 0.0, oy = 0.0;
@@ -200,6 +202,26 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     }
     if (pairs < std::max(3.0, o.min_pair_share * half)) return std::nullopt;
     cx += ox, cy += oy;
+    // The widths of the pairs that agree: a centred ellipse (a disc, a short streak) has
+    // 4 / width^2 = P + Q cos 2a + R sin 2a along direction a; its axes from P, Q, R by least
+    // squares (the rays' origin within settled_px of the centre shortens a width only to second
+    // order).
+    {
+      Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+      for (int i = 0; i < half; ++i) {
+        const auto j = static_cast<std::size_t>(i);
+        if (!use[j] || !(extent[j] > 0.0)) continue;
+        const double a = 2.0 * M_PI * i / o.directions;
+        const Eigen::Vector3d row(1.0, std::cos(2.0 * a), std::sin(2.0 * a));
+        normal += row * row.transpose();
+        rhs += row * (4.0 / (extent[j] * extent[j]));
+      }
+      const Eigen::Vector3d f = normal.ldlt().solve(rhs);
+      const double q = std::hypot(f(1), f(2));
+      out.minor_diameter = f(0) + q > 0.0 ? 2.0 / std::sqrt(f(0) + q) : 0.0;
+      out.major_diameter = f(0) - q > 0.0 ? 2.0 / std::sqrt(f(0) - q) : 0.0;
+    }
     out.pairs = pairs;
     out.residual_px = std::sqrt(residual / pairs);
     if (out.residual_px > o.max_residual_px) return std::nullopt;

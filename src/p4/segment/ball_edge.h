@@ -47,8 +47,12 @@ struct EdgeCentreOptions {
 
 struct EdgeCentre {
   double cx = 0.0, cy = 0.0;  // the shape's centre (mid-exposure for a streak), px
-  int pairs = 0;              // opposite rays that agreed
-  double residual_px = 0.0;   // RMS of their half-differences about the fit
+  // Its widths across and along (a disc: both its diameter; a short streak: the ball's diameter
+  // across the motion), from the opposite rays' edges, px; 0 where the fit says none (major of a
+  // shape too long for the rays).
+  double minor_diameter = 0.0, major_diameter = 0.0;
+  int pairs = 0;             // opposite rays that agreed
+  double residual_px = 0.0;  // RMS of their half-differences about the fit
 };
 
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a

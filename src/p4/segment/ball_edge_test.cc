@@ -46,6 +46,31 @@ TEST(EdgeCentre, ShadingInsideTheDiscAndALineBeyondItDoNotMoveTheCentre) {
   EXPECT_NEAR(e->cy, cy, 0.15);
 }
 
+TEST(EdgeCentre, TheWidthsOfADiscAndOfATiltedEllipse) {
+  const double cx = 30.3, cy = 24.7;
+  const I420Image disc = Paint(64, 48, [&](double x, double y) { return Disc(x, y, cx, cy, 5.0); });
+  const auto d = MeasureEdgeCentre(disc.View(), cx, cy, 5.0);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_NEAR(d->minor_diameter, 10.0, 0.2);
+  EXPECT_NEAR(d->major_diameter, 10.0, 0.2);
+  // Semi-axes 6.5 and 4.5 px, the long one 30 degrees from x (a short blur streak's shape).
+  const double c = std::cos(M_PI / 6.0), s = std::sin(M_PI / 6.0);
+  const I420Image ellipse = Paint(64, 48, [&](double x, double y) {
+    // Coverage by 4x4 subsamples of the pixel.
+    double hit = 0.0;
+    for (int k = 0; k < 16; ++k) {
+      const double u = x + (k % 4 + 0.5) / 4.0 - 0.5 - cx, v = y + (k / 4 + 0.5) / 4.0 - 0.5 - cy;
+      const double a = c * u + s * v, b = -s * u + c * v;
+      hit += (a * a) / (6.5 * 6.5) + (b * b) / (4.5 * 4.5) <= 1.0 ? 1.0 : 0.0;
+    }
+    return hit / 16.0;
+  });
+  const auto e = MeasureEdgeCentre(ellipse.View(), cx, cy, 6.5);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_NEAR(e->minor_diameter, 9.0, 0.3);
+  EXPECT_NEAR(e->major_diameter, 13.0, 0.5);
+}
+
 TEST(EdgeCentre, NothingToMeasure) {
   const I420Image flat = Paint(64, 48, [](double, double) { return 0.0; });
   EXPECT_FALSE(MeasureEdgeCentre(flat.View(), 30.0, 24.0, 5.0).has_value());

@@ -343,6 +343,10 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       if (const auto e = segment::MeasureEdgeCentre(image, r.cx, r.cy, radius, options_.edge);
           e && std::hypot(e->cx - r.cx, e->cy - r.cy) < 0.5 * d.diameter_px + 1.0) {
         d.pixel = {e->cx, e->cy};
+        if (e->minor_diameter > 0.0 &&
+            e->major_diameter <= options_.edge_diameter_max_elongation * e->minor_diameter) {
+          d.diameter_px = e->minor_diameter;
+        }
       }
     }
     d.observed = d.pixel;

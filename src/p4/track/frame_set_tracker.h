@@ -73,6 +73,11 @@ struct FrameSetOptions {
   double motion_max_px_s = 5000.0;
   bool edge_centre = true;           // the centre from the ball's edge (ball_edge.h)...
   double edge_max_elongation = 2.5;  // ...for views at most this much longer than wide
+  // The diameter from the ball's edge too (the opposite rays' widths) where the edges found are
+  // this round at most (major / minor): the moments of the luma's coverage lose a shaded ball's
+  // dark half, the edges do not; a streak's edges are drawn in by its thinner ends (at 1 diameter
+  // of blur by 7 %), so a longer shape keeps the moments' diameter. 0: never.
+  double edge_diameter_max_elongation = 1.3;
   segment::EdgeCentreOptions edge;
   // Beyond the paper: a background model per camera; once it is ready the ball is what differs
   // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
