@@ -202,32 +202,30 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     }
     if (pairs < std::max(3.0, o.min_pair_share * half)) return std::nullopt;
     cx += ox, cy += oy;
-    // The widths of the pairs that agree: a centred ellipse (a disc, a short streak) has
-    // 4 / width^2 = P + Q cos 2a + R sin 2a along direction a; its axes from P, Q, R by least
-    // squares (the rays' origin within settled_px of the centre shortens a width only to second
-    // order).
-    {
-      Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-      for (int i = 0; i < half; ++i) {
-        const auto j = static_cast<std::size_t>(i);
-        if (!use[j] || !(extent[j] > 0.0)) continue;
-        const double a = 2.0 * M_PI * i / o.directions;
-        const Eigen::Vector3d row(1.0, std::cos(2.0 * a), std::sin(2.0 * a));
-        normal += row * row.transpose();
-        rhs += row * (4.0 / (extent[j] * extent[j]));
-      }
-      const Eigen::Vector3d f = normal.ldlt().solve(rhs);
-      const double q = std::hypot(f(1), f(2));
-      out.minor_diameter = f(0) + q > 0.0 ? 2.0 / std::sqrt(f(0) + q) : 0.0;
-      out.major_diameter = f(0) - q > 0.0 ? 2.0 / std::sqrt(f(0) - q) : 0.0;
-    }
     out.pairs = pairs;
     out.residual_px = std::sqrt(residual / pairs);
     if (out.residual_px > o.max_residual_px) return std::nullopt;
     // Rays cast again only when the centre moved enough to change where they cross the edge.
     if (std::hypot(ox, oy) < o.settled_px) break;
   }
+  // The widths of the last rays' pairs that agree: a centred ellipse (a disc, a short streak) has
+  // 4 / width^2 = P + Q cos 2a + R sin 2a along direction a; its axes from P, Q, R by least
+  // squares (the rays' origin within settled_px of the centre shortens a width only to second
+  // order).
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (int i = 0; i < half; ++i) {
+    const auto j = static_cast<std::size_t>(i);
+    if (!use[j] || !(extent[j] > 0.0)) continue;
+    const double a = 2.0 * M_PI * i / o.directions;
+    const Eigen::Vector3d row(1.0, std::cos(2.0 * a), std::sin(2.0 * a));
+    normal += row * row.transpose();
+    rhs += row * (4.0 / (extent[j] * extent[j]));
+  }
+  const Eigen::Vector3d f = normal.ldlt().solve(rhs);
+  const double q = std::hypot(f(1), f(2));
+  out.minor_diameter = f(0) + q > 0.0 ? 2.0 / std::sqrt(f(0) + q) : 0.0;
+  out.major_diameter = f(0) - q > 0.0 ? 2.0 / std::sqrt(f(0) - q) : 0.0;
   out.cx = cx, out.cy = cy;
   return out;
 }

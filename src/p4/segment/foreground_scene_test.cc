@@ -29,12 +29,15 @@ namespace {
 struct Silhouette {
   Eigen::Vector2d centre;  // coverage-weighted centre, px
   double area = 0.0;       // px^2, averaged over the exposure
+  // Its width across its longest axis: 4 sqrt of the smallest eigenvalue of the coverage's
+  // covariance (a disc's diameter; a streak's across the motion), px.
+  double minor_diameter = 0.0;
 };
 
 // The exact image of the ball: coverage of each pixel by rays (8x8 a pixel) that hit the sphere,
 // averaged over the exposure's samples.
 Silhouette Exact(const Camera& camera, const std::vector<Eigen::Vector3d>& samples) {
-  double sum = 0.0, sx = 0.0, sy = 0.0;
+  double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (const Eigen::Vector3d& p : samples) {
     const Eigen::Vector3d c = camera.cam_from_world * p;
     const auto px = camera.Project(p);
@@ -50,13 +53,18 @@ Silhouette Exact(const Camera& camera, const std::vector<Eigen::Vector3d>& sampl
           if (dc * dc - dd * (c.squaredNorm() - table::kBallRadius * table::kBallRadius) < 0.0) {
             continue;
           }
-          const double w = 1.0 / 64.0 / samples.size();
-          sum += w, sx += w * (u + du), sy += w * (v + dv);
+          const double w = 1.0 / 64.0 / samples.size(), x = u + du, y = v + dv;
+          sum += w, sx += w * x, sy += w * y;
+          sxx += w * x * x, syy += w * y * y, sxy += w * x * y;
         }
       }
     }
   }
-  return {{sx / sum, sy / sum}, sum};
+  const double mx = sx / sum, my = sy / sum;
+  return {
+      {mx, my},
+      sum,
+      DiametersFromMoments(sxx / sum - mx * mx, syy / sum - my * my, sxy / sum - mx * my).minor};
 }
 
 // One camera of the club rig rendering a look; its background learnt from frames without the
@@ -779,35 +787,6 @@ TEST(StreakFinderScene, ValidatesItsOptions) {
   EXPECT_NE(why.find("streak finder"), std::string::npos);
 }
 
-// The exact image's width across its longest axis: 4 sqrt of the smallest eigenvalue of the
-// coverage's covariance (a disc's diameter; a streak's across the motion), px.
-double ExactMinor(const Camera& camera, const std::vector<Eigen::Vector3d>& samples) {
-  double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
-  for (const Eigen::Vector3d& p : samples) {
-    const Eigen::Vector3d c = camera.cam_from_world * p;
-    const auto px = camera.Project(p);
-    const double r_px = 1.5 * camera.fx * table::kBallRadius / c.z() + 2.0;
-    for (int v = static_cast<int>(px->y() - r_px); v <= static_cast<int>(px->y() + r_px) + 1; ++v) {
-      for (int u = static_cast<int>(px->x() - r_px); u <= static_cast<int>(px->x() + r_px) + 1;
-           ++u) {
-        for (int k = 0; k < 64; ++k) {
-          const double du = (k % 8 + 0.5) / 8.0 - 0.5, dv = (k / 8 + 0.5) / 8.0 - 0.5;
-          const Eigen::Vector2d n = camera.NormalizedFromPixel({u + du, v + dv});
-          const Eigen::Vector3d d(n.x(), n.y(), 1.0);
-          const double dc = d.dot(c), dd = d.squaredNorm();
-          if (dc * dc - dd * (c.squaredNorm() - table::kBallRadius * table::kBallRadius) < 0.0) {
-            continue;
-          }
-          const double x = u + du, y = v + dv;
-          sum += 1, sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
-        }
-      }
-    }
-  }
-  const double mx = sx / sum, my = sy / sum;
-  return DiametersFromMoments(sxx / sum - mx * mx, syy / sum - my * my, sxy / sum - mx * my).minor;
-}
-
 // The ball's width from its edges (EdgeCentre::minor_diameter) and from the moments of the luma's
 // coverage (MeasureBall, what the tracker took before), each against the exact width, on 12
 // places: the mean ratio, and how many were measured.
@@ -826,7 +805,7 @@ WidthRatios WidthsOver(Scene& scene, const Eigen::Vector3d& velocity, double exp
     const auto samples = Exposure(Place(k), velocity, exposure, 24);
     scene.Render(samples, 1.0 + k / 60.0, 7000 + k);
     const Silhouette exact = Exact(scene.camera(), samples);
-    const double truth = ExactMinor(scene.camera(), samples);
+    const double truth = exact.minor_diameter;
     std::vector<Region> regions;
     blobs.Find(scene.frame().View(), lut, {}, segment, &regions);
     const Region* region = nullptr;

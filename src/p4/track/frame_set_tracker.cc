@@ -412,6 +412,12 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   std::vector<std::pair<int, int>> used;
   const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
   const bool confirming = options_.confirm_tracks;
+  // One camera: each candidate placed by its diameter (nullopt: outside the hall).
+  std::vector<std::optional<Measurement>> placed;
+  if (n == 1) {
+    for (const Detection& d : candidates[0])
+      placed.push_back(SphereMeasurement(rig_.cameras[0], d));
+  }
   std::optional<Tracklet> confirmed;
   // Detection (camera c, candidate k) is result.detections[offset[c] + k] (flattened below).
   std::vector<int> offset(n + 1, 0);
@@ -422,10 +428,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     std::vector<TrackletPoint> points;
     // One camera: every candidate, placed by its diameter (a streak's is the expected one: it
     // says nothing of the depth).
-    for (int k = 0; n == 1 && k < static_cast<int>(candidates[0].size()); ++k) {
-      const Detection& d = candidates[0][k];
-      if (d.streak) continue;
-      if (auto m = SphereMeasurement(rig_.cameras[0], d)) points.push_back({t, *m, {k}});
+    for (int k = 0; k < static_cast<int>(placed.size()); ++k) {
+      if (placed[k] && !candidates[0][k].streak) points.push_back({t, *placed[k], {k}});
     }
     std::vector<bool> taken_detection(offset[n], false);
     for (const Hypothesis& h : hypotheses) {
@@ -462,7 +466,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   std::optional<WaitingView> waits;
   if (!result.measurement && options_.single_camera_fallback) {
     if (n == 1) {
-      result.measurement = SingleView(candidates, predicted, &used);
+      result.measurement = SingleView(candidates[0], placed, predicted, &used);
     } else if (predicted) {
       if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance)) {
         // A lone view whose depth the filter knows is a row at once; with the rows held
@@ -730,29 +734,26 @@ Measurement FrameSetTracker::ToMeasurement(const Hypothesis& h) const {
 }
 
 std::optional<Measurement> FrameSetTracker::SingleView(
-    const std::vector<std::vector<Detection>>& candidates,
+    const std::vector<Detection>& views, const std::vector<std::optional<Measurement>>& placed,
     const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
   std::optional<Measurement> best;
   double best_score = 0.0;
-  std::pair<int, int> best_id;
-  for (int c = 0; c < rig_.size(); ++c) {
-    for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
-      const Detection& d = candidates[c][k];
-      const auto m = SphereMeasurement(rig_.cameras[c], d);
-      if (!m) continue;
-      // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
-      double score = -static_cast<double>(d.area_px);
-      if (predicted) {
-        score = (m->position - *predicted).norm();
-        if (score > options_.max_prediction_distance) continue;
-      }
-      if (best && score >= best_score) continue;
-      best = m;
-      best_score = score;
-      best_id = {c, k};
+  int best_k = 0;
+  for (int k = 0; k < static_cast<int>(views.size()); ++k) {
+    const std::optional<Measurement>& m = placed[k];
+    if (!m) continue;
+    // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
+    double score = -static_cast<double>(views[k].area_px);
+    if (predicted) {
+      score = (m->position - *predicted).norm();
+      if (score > options_.max_prediction_distance) continue;
     }
+    if (best && score >= best_score) continue;
+    best = m;
+    best_score = score;
+    best_k = k;
   }
-  if (best) *used = {best_id};
+  if (best) *used = {{0, best_k}};
   return best;
 }
 

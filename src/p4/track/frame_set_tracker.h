@@ -269,8 +269,10 @@ class FrameSetTracker {
   // A confirmed tracklet becomes the track: the filter replays its points; all but the last
   // become revisions of their time-stamps, the last is this time-stamp's state and measurement.
   void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result);
-  // One-camera rig: the view placed by its diameter; with a prediction, the one nearest it.
-  std::optional<Measurement> SingleView(const std::vector<std::vector<Detection>>& candidates,
+  // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
+  // prediction, the one nearest it.
+  std::optional<Measurement> SingleView(const std::vector<Detection>& views,
+                                        const std::vector<std::optional<Measurement>>& placed,
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         std::vector<std::pair<int, int>>* used) const;
   // A view placed by its diameter (paper §3.2), known across its ray to pixel_sigma and along it

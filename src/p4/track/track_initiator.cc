@@ -2,7 +2,6 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <tuple>
 
@@ -42,29 +41,39 @@ struct NoiseAxes {
   Eigen::Vector3d sigma = Eigen::Vector3d::Zero();     // m
 };
 
-NoiseAxes AxesOf(std::span<const TrackletPoint* const> points) {
+// Axes of `newest`'s covariance; sigmas from the points given to Widen.
+NoiseAxes AxesOf(const Measurement& newest) {
   NoiseAxes n;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(points.back()->measurement.covariance);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(newest.covariance);
   if (eigen.info() == Eigen::Success) n.axes = eigen.eigenvectors();
-  for (const TrackletPoint* p : points) {
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d e = n.axes.col(i);
-      n.sigma(i) =
-          std::max(n.sigma(i), std::sqrt(std::max(0.0, e.dot(p->measurement.covariance * e))));
-    }
-  }
   return n;
 }
 
-NoiseAxes AxesOf(std::span<const TrackletPoint> points) {
-  std::vector<const TrackletPoint*> ptrs;
-  for (const TrackletPoint& p : points) ptrs.push_back(&p);
-  return AxesOf(ptrs);
+void Widen(const Measurement& m, NoiseAxes* n) {
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d e = n->axes.col(i);
+    n->sigma(i) = std::max(n->sigma(i), std::sqrt(std::max(0.0, e.dot(m.covariance * e))));
+  }
 }
 
-// |d| in units of `scale` per axis: <= 1 inside the ellipsoid of those semi-axes.
-double Scaled(const NoiseAxes& n, const Eigen::Vector3d& scale, const Eigen::Vector3d& d) {
-  return (n.axes.transpose() * d).cwiseQuotient(scale).norm();
+NoiseAxes AxesOf(std::span<const TrackletPoint> points) {
+  NoiseAxes n = AxesOf(points.back().measurement);
+  for (const TrackletPoint& p : points) Widen(p.measurement, &n);
+  return n;
+}
+
+// Of two points, the axes of `b`'s covariance.
+NoiseAxes AxesOf(const TrackletPoint& a, const TrackletPoint& b) {
+  NoiseAxes n = AxesOf(b.measurement);
+  Widen(a.measurement, &n);
+  Widen(b.measurement, &n);
+  return n;
+}
+
+// |d| in units of `scale` along the columns of `axes`: <= 1 inside the ellipsoid of those
+// semi-axes.
+double Scaled(const Eigen::Matrix3d& axes, const Eigen::Vector3d& scale, const Eigen::Vector3d& d) {
+  return (axes.transpose() * d).cwiseQuotient(scale).norm();
 }
 
 // RMS distance of the points from the best flight through them: p0 + v t + a t^2 / 2 with a
@@ -118,8 +127,7 @@ TrackInitiator::Gate TrackInitiator::Predict(const Tracklet& tracklet, TimeNs t)
   Eigen::Vector3d predicted = p1;
   MidpointStep<double>(&predicted, &v, no_spin, dt, options_.gravity, options_.drag_per_mass);
   // The velocity is as good as the two points' difference: its error grows with dt / dt01.
-  const std::array<const TrackletPoint*, 2> two{&before, &last};
-  const NoiseAxes noise = AxesOf(two);
+  const NoiseAxes noise = AxesOf(before, last);
   const double growth = options_.gate_sigmas * (1.0 + 1.5 * dt / dt01);
   return {predicted, noise.axes, (options_.gate + growth * noise.sigma.array()).matrix()};
 }
@@ -148,11 +156,10 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   const double span = ToSeconds(points.back().t - points.front().t);
   // The travel must also stand out of the two ends' noise (one camera's depth alone wanders by
   // more than min_travel).
-  const std::array<const TrackletPoint*, 2> ends{&points.front(), &points.back()};
-  const NoiseAxes end_noise = AxesOf(ends);
+  const NoiseAxes end_noise = AxesOf(points.front(), points.back());
   const Eigen::Vector3d travel_sigma =
       (std::sqrt(2.0) * end_noise.sigma.array().max(1e-9)).matrix();
-  const bool travelled = Scaled(end_noise, travel_sigma, travel) >= options_.min_travel_sigmas;
+  const bool travelled = Scaled(end_noise.axes, travel_sigma, travel) >= options_.min_travel_sigmas;
   if (travelled && travel.norm() >= options_.min_travel &&
       travel.norm() >= options_.min_travel_speed * span) {
     return true;
@@ -218,10 +225,10 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   std::vector<Pair> pairs;
   for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
     const Gate gate = Predict(tracklets_[i], t);
-    const NoiseAxes axes{gate.axes, gate.radii};
     const int rank = std::min<int>(3, static_cast<int>(tracklets_[i].points.size()));
     for (int j = 0; j < static_cast<int>(candidates.size()); ++j) {
-      const double d = Scaled(axes, gate.radii, candidates[j].measurement.position - gate.centre);
+      const double d =
+          Scaled(gate.axes, gate.radii, candidates[j].measurement.position - gate.centre);
       if (d <= 1.0) pairs.push_back({i, j, rank, d});
     }
   }
