@@ -321,6 +321,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   for (const auto& [still, k] : order) {
     const segment::Region& r = region_of(k);
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
+    d.still = still;
     if (by_coverage(k)) {
       d.diameter_px = r.diameter;  // the coverage sum: the disc's area, blur or not
     } else if (options_.refine) {
@@ -426,10 +427,14 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (confirming) {
     // Every distinct candidate of this time-stamp goes to the initiator, best first.
     std::vector<TrackletPoint> points;
-    // One camera: every candidate, placed by its diameter (a streak's is the expected one: it
-    // says nothing of the depth).
+    // One camera: every candidate that moved, placed by its diameter (a streak's is the
+    // expected one: it says nothing of the depth). A region that stood still since the last set
+    // is not one: its depth noise is the same in each (one region, one size), while the
+    // initiator takes each point's noise as its own, so that still spots joined by jumps along
+    // the ray (near things of other sizes) would fit a flight within one camera's depth noise.
     for (int k = 0; k < static_cast<int>(placed.size()); ++k) {
-      if (placed[k] && !candidates[0][k].streak) points.push_back({t, *placed[k], {k}});
+      const Detection& d = candidates[0][k];
+      if (placed[k] && !d.streak && !d.still) points.push_back({t, *placed[k], {k}});
     }
     std::vector<bool> taken_detection(offset[n], false);
     for (const Hypothesis& h : hypotheses) {

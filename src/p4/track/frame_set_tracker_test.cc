@@ -483,6 +483,31 @@ TEST_F(FrameSetTrackerTest, OneCameraStartsItsTrackOnTheFlyingBallNotTheLargestR
   EXPECT_GE(revised, 3);
 }
 
+// One camera, no ball: two still orange things of other sizes side by side (a shoe behind a
+// spare ball), seen in turn. From one camera each is placed by its size, ~0.6 m apart along
+// nearly one ray: a tracklet of one still spot, a jump along the ray and the other still spot
+// travels far and fast, and its newest points fit a flight within one camera's depth noise. A
+// region still since the last set is no point of a new track: neither starts one.
+TEST_F(FrameSetTrackerTest, OneCameraStartsNoTrackOnStillSpotsSeenInTurn) {
+  Rig one;
+  one.cameras = {rig_.cameras[0]};
+  FrameSetTracker tracker(one, segment::DefaultOrangeBall(), {});
+  const auto spot = one.cameras[0].Project(Eigen::Vector3d(0.6, -0.9, table::kFloorZ));
+  ASSERT_TRUE(spot.has_value());
+  for (int k = 0; k < 48; ++k) {
+    auto views = Frames(std::nullopt, k);
+    if ((k / 6) % 2 == 0) {
+      PaintOrange(0, spot->x(), spot->y(), 6.0);
+    } else {
+      PaintOrange(0, spot->x() + 2.0, spot->y() - 1.0, 7.5);
+    }
+    const auto result =
+        tracker.Process(FromSeconds(k / 120.0), std::vector<std::optional<ImageView>>{views[0]});
+    EXPECT_FALSE(result.new_track) << k;
+    EXPECT_FALSE(result.state.has_value()) << k;
+  }
+}
+
 // A webcam rig at 25 fps: camera 1 loses the ball for one frame (k = 6) in a flight that both
 // see otherwise. The lone view of camera 0 fixes the ball's direction; one frame after a
 // two-view fix the filter knows its depth along that ray to some 5 cm only, too loose for a row,
