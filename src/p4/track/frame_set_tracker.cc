@@ -322,6 +322,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     const segment::Region& r = region_of(k);
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
     d.still = still;
+    d.cut = r.touches_border;
     if (by_coverage(k)) {
       d.diameter_px = r.diameter;  // the coverage sum: the disc's area, blur or not
     } else if (options_.refine) {
@@ -764,6 +765,7 @@ std::optional<Measurement> FrameSetTracker::SingleView(
 
 std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& camera,
                                                               const Detection& d) const {
+  if (d.cut) return std::nullopt;
   // The detection's diameter is the blur-proof minor axis, across the image radius.
   const auto sphere = PointFromSphereImage(camera, d.pixel, d.diameter_px,
                                            EllipseAxis::kAcrossRadius, table::kBallRadius);

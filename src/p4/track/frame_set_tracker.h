@@ -168,6 +168,9 @@ struct Detection {
   // The region stood within static_px of the same place in the last set (a lamp, a letter, a
   // spare ball; the ball in flight moves, but for a moment at the top of a toss).
   bool still = false;
+  // The region reaches the image's edge: the ball may be cut (or it is something larger coming
+  // into view), so its diameter measures no depth.
+  bool cut = false;
 };
 
 struct CameraSearch {

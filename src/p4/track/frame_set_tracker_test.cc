@@ -508,6 +508,27 @@ TEST_F(FrameSetTrackerTest, OneCameraStartsNoTrackOnStillSpotsSeenInTurn) {
   }
 }
 
+// One camera: a ball-coloured thing half out of the image at its right edge, moving down it (a
+// ball leaving the view, a shirt coming into it). Its region is cut by the edge, so its size
+// says nothing of its distance: it is no measurement and starts no track.
+TEST_F(FrameSetTrackerTest, OneCameraMeasuresNothingCutByTheImagesEdge) {
+  Rig one;
+  one.cameras = {rig_.cameras[0]};
+  FrameSetTracker tracker(one, segment::DefaultOrangeBall(), {});
+  const double right = one.cameras[0].width - 1.0;
+  bool seen_cut = false;
+  for (int k = 0; k < 24; ++k) {
+    auto views = Frames(std::nullopt, k);
+    PaintOrange(0, right, 100.0 + 4.0 * k, 8.0);
+    const auto result =
+        tracker.Process(FromSeconds(k / 120.0), std::vector<std::optional<ImageView>>{views[0]});
+    for (const Detection& d : result.detections) seen_cut = seen_cut || d.cut;
+    EXPECT_FALSE(result.measurement.has_value()) << k;
+    EXPECT_FALSE(result.state.has_value()) << k;
+  }
+  EXPECT_TRUE(seen_cut);
+}
+
 // A webcam rig at 25 fps: camera 1 loses the ball for one frame (k = 6) in a flight that both
 // see otherwise. The lone view of camera 0 fixes the ball's direction; one frame after a
 // two-view fix the filter knows its depth along that ray to some 5 cm only, too loose for a row,

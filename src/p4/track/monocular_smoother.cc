@@ -32,8 +32,9 @@ bool MonocularSmootherOptions::IsValid(std::string* error) const {
   if (!fit.IsValid(error)) return false;
   if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px &&
         adopt_px >= 0.0 && max_gap_s > 0.0 && max_window_s > 0.0 && contact_margin >= 0.0 &&
-        contact_depth_agree > 0.0 && max_fit_rms > 0.0 && max_fit_rms_short > 0.0 &&
-        merge_rms > 0.0)) {
+        contact_depth_agree > 0.0 && contact_depth_agree_share >= 0.0 &&
+        bounce_speed_slack >= 0.0 && bounce_min_up_across >= 0.0 && max_fit_rms > 0.0 &&
+        max_fit_rms_short > 0.0 && merge_rms > 0.0 && max_distance_error > 0.0)) {
     *error = "monocular smoother: sigmas, thresholds and times must be positive";
     return false;
   }
@@ -59,6 +60,9 @@ Eigen::Vector2d MonocularSmoother::IdealPixel(const Eigen::Vector2d& pixel) cons
 
 std::optional<MonocularSmoother::View> MonocularSmoother::ViewFrom(const FrameSetResult& result,
                                                                    const Detection& d) const {
+  // A region at the image's edge is a ball cut by it: neither its centre nor its size is the
+  // ball's.
+  if (d.cut) return std::nullopt;
   const auto sphere = PointFromSphereImage(
       camera_, d.pixel, d.diameter_px, EllipseAxis::kAcrossRadius, options_.fit.model.ball_radius);
   if (!sphere) return std::nullopt;
@@ -208,6 +212,11 @@ void MonocularSmoother::EndPiece(const Piece& next) {
   if (next.empty()) break_chain({});
 }
 
+bool MonocularSmoother::Holds(const std::optional<Stroke>& fit, double max_rms) const {
+  return fit && fit->rms_bearing <= max_rms &&
+         fit->median_distance_error <= options_.max_distance_error;
+}
+
 void MonocularSmoother::DecideBend() {
   pending_bend_ = false;
   // A bend that one flight explains was none (the ball passing the net's edge, an arm beside it
@@ -246,15 +255,29 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
   const Vector6d xa = PieceStateAt(QuadraticPiece(obs_after), j.t, options_.fit.model);
   j.point = 0.5 * (xb.head<3>() + xa.head<3>());
   // A bounce: down, then up, the horizontal velocity kept in direction and mostly in size (a
-  // hit turns it back, the net takes it). Judged on the part across the ray, which the bearings
-  // measure well; a ball flying along the ray cannot be judged so and passes.
+  // hit turns it back, the net takes it). Judged on the parts across the ray, which the bearings
+  // measure well (along it, a short piece's velocity is the diameters' noise): "up" is the
+  // vertical less its part along the ray; a ball flying along the ray cannot be judged so and
+  // passes, and so does the fall of a camera looking straight down.
   const Eigen::Vector3d c = camera_.Center();
-  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(j.point - c).normalized();
+  const Eigen::Vector3d ray = (j.point - c).normalized();
+  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(ray).normalized();
+  const Eigen::Vector3d up_across = Eigen::Vector3d::UnitZ() - ray.z() * ray;
+  const bool up_seen = up_across.norm() >= options_.bounce_min_up_across;
+  const double vzb = up_seen ? up_across.normalized().dot(xb.tail<3>()) : xb(5);
+  const double vza = up_seen ? up_across.normalized().dot(xa.tail<3>()) : xa(5);
   const double hb = across.dot(xb.tail<3>()), ha = across.dot(xa.tail<3>());
   const double ratio = ha / (std::abs(hb) > 1e-6 ? hb : 1e-6);
   const bool judged = std::max(std::abs(hb), std::abs(ha)) > options_.bounce_min_speed;
-  if (!(xb(5) < 0.0 && xa(5) > 0.0) || (judged && (ratio < options_.bounce_min_speed_ratio ||
-                                                   ratio > options_.bounce_max_speed_ratio))) {
+  // The table's friction changes the horizontal velocity by mu (1 + e) |vz| at most (sliding
+  // through the contact): topspin may speed a slow ball up by more than the ratio allows.
+  const FlightModel& model = options_.fit.model;
+  const bool within_friction =
+      std::abs(ha - hb) <=
+      model.friction * (1.0 + model.restitution) * std::abs(vzb) + options_.bounce_speed_slack;
+  if (!(vzb < 0.0 && vza > 0.0) ||
+      (judged && !within_friction &&
+       (ratio < options_.bounce_min_speed_ratio || ratio > options_.bounce_max_speed_ratio))) {
     return j;
   }
   // Where the ball was at the bend, in the image (both sides' quadratics), meets the plane.
@@ -275,7 +298,10 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
     const bool on_table =
         std::abs(p.x()) <= table::kHalfLength + m && std::abs(p.y()) <= table::kHalfWidth + m;
     if (on_table != (plane_z == r)) continue;  // the table top only on the table, the floor off it
-    const double agree = options_.contact_depth_agree;
+    // The diameters of a ball blurred in a long exposure read short (its streak's sides are
+    // covered for less of it): their distance may be long by a share of the contact's.
+    const double agree =
+        std::max(options_.contact_depth_agree, options_.contact_depth_agree_share * s);
     if (std::abs((xb.head<3>() - c).norm() - s) > agree ||
         std::abs((xa.head<3>() - c).norm() - s) > agree) {
       continue;
@@ -334,7 +360,7 @@ void MonocularSmoother::FitWindow(bool with_open) {
     return n + static_cast<int>(p->size());
   });
   const bool held = lead || pieces.size() > 1 || views >= options_.min_lone_views;
-  if (fit && held && fit->rms_bearing <= max_rms) {
+  if (held && Holds(fit, max_rms)) {
     Apply(*fit, lead ? &lead_in_->piece : nullptr, t_from, t_to);
     ++windows_fitted_;
     next = LeadIn{fit->pieces[closed - 1], t_to};
@@ -349,32 +375,66 @@ void MonocularSmoother::FitWindow(bool with_open) {
       next_junction = junctions_[closed - 1];
     }
   } else {
-    // The chain did not hold: the first piece after the lead-in, each later one long enough on
-    // its own; a short one keeps the distance where the flight before it ended.
+    // The chain did not hold as a whole (a bend misjudged, a stretch of stray views): it is cut
+    // into the longest runs of pieces that hold, first to last, each led in by the run before
+    // (the ball leaves a hit where it arrived) where the views are close enough. A piece that no
+    // run holds keeps the distance where the flight before it ended.
     std::optional<LeadIn> prev;
-    if (lead) prev = lead_in_;
-    for (size_t i = 0; i < closed; ++i) {
-      const auto& obs = observations[i];
-      const bool led = i == 0 && lead;
-      std::optional<Stroke> one;
-      if (static_cast<int>(obs.size()) >=
-              std::max(options_.min_piece_views, led ? 0 : options_.min_lone_views) ||
-          led) {
-        Stroke alone;
-        alone.pieces = {guess.pieces[i]};
-        if (led) alone.start = lead_in_junction_;
-        one = FitStroke(std::span(observations).subspan(i, 1), alone, options_.fit,
-                        led ? &*lead_in_ : nullptr);
+    std::optional<Junction> prev_junction;
+    if (lead) prev = lead_in_, prev_junction = lead_in_junction_;
+    size_t i = 0;
+    while (i < closed) {
+      const bool near = prev && observations[i].front().t - prev->after_t <= options_.max_gap_s;
+      std::optional<Stroke> run;
+      size_t end = i;
+      bool led = false;
+      // Led in first; a run the lead-in does not fit (a bounce misjudged as free between them)
+      // may stand alone.
+      for (const bool with_lead : {true, false}) {
+        if (with_lead && !near) continue;
+        for (size_t j = closed; j > i && !run; --j) {
+          int run_views = 0;
+          bool run_short = false;
+          for (size_t k = i; k < j; ++k) {
+            const int size = static_cast<int>(observations[k].size());
+            run_views += size;
+            run_short = run_short || size < options_.min_piece_views;
+          }
+          // Alone, a piece needs many views unless led in (as a window of one, above).
+          if (j - i == 1 && !with_lead &&
+              run_views < std::max(options_.min_piece_views, options_.min_lone_views)) {
+            continue;
+          }
+          Stroke part;
+          part.pieces.assign(guess.pieces.begin() + i, guess.pieces.begin() + j);
+          part.junctions.assign(guess.junctions.begin() + i, guess.junctions.begin() + (j - 1));
+          if (with_lead) part.start = prev_junction;
+          auto fit_part = FitStroke(std::span(observations).subspan(i, j - i), part, options_.fit,
+                                    with_lead ? &*prev : nullptr);
+          const double part_max =
+              run_short && j - i > 1 ? options_.max_fit_rms_short : options_.max_fit_rms;
+          if (Holds(fit_part, part_max)) {
+            run = std::move(fit_part), end = j, led = with_lead;
+          }
+        }
+        if (run) break;
       }
-      if (one && one->rms_bearing <= options_.max_fit_rms) {
-        Apply(*one, led ? &lead_in_->piece : nullptr, led ? t_from : obs.front().t, obs.back().t);
-        prev = LeadIn{one->pieces[0], obs.back().t};
-      } else if (prev && obs.front().t - prev->after_t <= options_.max_gap_s) {
-        Continue(prev->piece, obs.front().t, obs.back().t);
-        prev->after_t = obs.back().t;
+      if (run) {
+        const double from = led ? prev->after_t : observations[i].front().t;
+        Apply(*run, led ? &prev->piece : nullptr, from, observations[end - 1].back().t);
+        prev = LeadIn{run->pieces.back(), observations[end - 1].back().t};
+        i = end;
       } else {
-        prev.reset();
+        if (near) {
+          Continue(prev->piece, observations[i].front().t, observations[i].back().t);
+          prev->after_t = observations[i].back().t;
+        } else {
+          prev.reset();
+        }
+        ++i;
       }
+      // The junction where the next run starts: the bend judged after the last piece taken.
+      if (i > 0 && i - 1 < junctions_.size()) prev_junction = junctions_[i - 1];
     }
     next = prev;
     if (junctions_.size() >= closed) next_junction = junctions_[closed - 1];

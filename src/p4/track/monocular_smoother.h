@@ -49,16 +49,28 @@ struct MonocularSmootherOptions {
   double max_gap_s = 0.1;   // views farther apart break the chain
   double max_window_s = 2.5;         // a longer window without a bounce is handed on anyway
   double contact_margin = 0.05;      // m beyond the table's outline that still counts as on it
-  double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most
+  double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most...
+  double contact_depth_agree_share = 0.25;  // ...or this share of the contact's distance
   // A bounce keeps the horizontal velocity across the ray in sign and mostly in size (friction
   // takes some, topspin may add some); a hit or the net do not. Judged when either side is faster
   // than bounce_min_speed.
   double bounce_min_speed_ratio = 0.4;
   double bounce_max_speed_ratio = 1.6;
-  double bounce_min_speed = 1.0;   // m/s
+  double bounce_min_speed = 1.0;  // m/s
+  // A change within the table's friction (mu (1 + e) |vz|) plus this (m/s) passes whatever the
+  // ratio.
+  double bounce_speed_slack = 0.5;
+  // Down and up are judged across the ray where the vertical has this much across it (the sine
+  // of the ray's angle to the vertical), else in 3D.
+  double bounce_min_up_across = 0.3;
   double max_fit_rms = 3.0;        // bearing residuals (sigmas) above which a fit is not used
   double max_fit_rms_short = 1.0;  // the same for a window with a piece of < min_piece_views
   double merge_rms = 1.2;          // two pieces that one flight fits this well (sigmas) are one
+  // A fit with a piece whose distances most of its diameters disagree with by more than this
+  // share (the median; the fit's common scale applied) is not used: the piece slid along its
+  // rays, where only the bearings hold it (a short piece after a hit). The diameters' own noise
+  // is a few per cent; their bias along a flight (shading, blur) some more.
+  double max_distance_error = 0.25;
   // A chain that starts slower than this (m/s, mid-piece) and rising starts with the service
   // toss: fitted without spin.
   double toss_max_speed = 4.0;
@@ -106,6 +118,8 @@ class MonocularSmoother {
   // Fits the window's pieces (and the open piece when `with_open`) after the lead-in and makes
   // the rows up to the window's last piece final.
   void FitWindow(bool with_open);
+  // The fit explains the bearings within max_rms and the diameters (max_distance_sigmas).
+  bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the
   // flight next to them (`from`, before or after) has there (the ball cannot be far from where

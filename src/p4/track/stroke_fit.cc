@@ -54,8 +54,9 @@ T CauchyScale(const T& s, double b) {
 
 // Every view of a piece in one pass of the integration, outwards from t0 (a block per view would
 // integrate from t0 to each: quadratic in the views). Per view: two bearing residuals across the
-// ray (in sigmas, Huber loss) and the diameter's distance (Cauchy loss; 0 without a diameter),
-// the losses folded into the residuals.
+// ray (in sigmas, Huber loss) and the diameter's distance times the fit's common scale (Cauchy
+// loss; 0 without a diameter), the losses folded into the residuals (a loss's threshold <= 0:
+// none). Parameters: the piece, the scale.
 struct PieceCost {
   PieceCost(std::vector<BearingObservation> observations, double t0, const FlightModel& m,
             double step, double huber, double cauchy)
@@ -73,6 +74,7 @@ struct PieceCost {
   template <typename T>
   bool operator()(T const* const* params, T* r) const {
     const T* x = params[0];
+    const T scale_distance = params[1][0];
     const Vec3<T> b(x[6], x[7], x[8]);
     const int n = static_cast<int>(obs.size());
     int first_after = 0;
@@ -88,13 +90,15 @@ struct PieceCost {
         T* rk = r + 3 * k;
         rk[0] = e1[k].cast<T>().dot(to) / range / T(obs[k].angle_sigma);
         rk[1] = e2[k].cast<T>().dot(to) / range / T(obs[k].angle_sigma);
-        const T scale = HuberScale(T(rk[0] * rk[0] + rk[1] * rk[1]), huber);
-        rk[0] *= scale;
-        rk[1] *= scale;
+        if (huber > 0.0) {
+          const T scale = HuberScale(T(rk[0] * rk[0] + rk[1] * rk[1]), huber);
+          rk[0] *= scale;
+          rk[1] *= scale;
+        }
         rk[2] = T(0.0);
         if (obs[k].distance > 0.0) {
-          const T d = (range - T(obs[k].distance)) / T(obs[k].distance_sigma);
-          rk[2] = d * CauchyScale(T(d * d), cauchy);
+          const T d = (range - scale_distance * obs[k].distance) / T(obs[k].distance_sigma);
+          rk[2] = cauchy > 0.0 ? d * CauchyScale(T(d * d), cauchy) : d;
         }
       }
     }
@@ -189,6 +193,17 @@ struct MagnusPrior {
   double sigma;
 };
 
+// The diameters' common bias is unknown but bounded: their distances' scale ~ N(1, sigma^2).
+struct ScalePrior {
+  explicit ScalePrior(double sigma) : sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* scale, T* r) const {
+    r[0] = (scale[0] - T(1.0)) / T(sigma);
+    return true;
+  }
+  double sigma;
+};
+
 using PieceParams = std::array<double, 9>;
 
 PieceParams ToParams(const FlightPiece& piece) {
@@ -202,8 +217,9 @@ PieceParams ToParams(const FlightPiece& piece) {
 
 bool StrokeFitOptions::IsValid(std::string* error) const {
   if (!(magnus_sigma > 0.0 && toss_magnus_sigma > 0.0 && toss_horizontal_sigma > 0.0 &&
-        contact_sigma > 0.0 && huber_sigmas > 0.0 && distance_loss_sigmas > 0.0 && max_step > 0.0 &&
-        max_iterations > 0 && model.gravity > 0.0 && model.drag_per_mass >= 0.0)) {
+        contact_sigma > 0.0 && distance_scale_sigma >= 0.0 && huber_sigmas > 0.0 &&
+        distance_loss_sigmas > 0.0 && max_step > 0.0 && max_iterations > 0 && model.gravity > 0.0 &&
+        model.drag_per_mass >= 0.0)) {
     *error = "stroke fit: sigmas, step, iterations and gravity must be positive, drag >= 0";
     return false;
   }
@@ -286,13 +302,33 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   ceres::Problem problem;
   const FlightModel& model = options.model;
   const double step = options.max_step;
+  double distance_scale = 1.0;
+  problem.AddParameterBlock(&distance_scale, 1);
+  // Only an anchor fixes the scale: a contact with a known plane or the lead-in's end (in free
+  // flight gravity's pull alone would, but the spin's Magnus pull confounds it).
+  const bool anchored =
+      lead_in != nullptr || std::any_of(guess.junctions.begin(), guess.junctions.end(),
+                                        [](const Junction& j) { return j.on_plane; });
+  if (options.distance_scale_sigma > 0.0 && anchored) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(
+                                 new ScalePrior(options.distance_scale_sigma)),
+                             nullptr, &distance_scale);
+    // No further than 3 sigmas: where only a scale far off would reconcile the diameters with the
+    // bearings, the fit is wrong, and its diameters' residuals should say so.
+    problem.SetParameterLowerBound(&distance_scale, 0,
+                                   std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma));
+    problem.SetParameterUpperBound(&distance_scale, 0, 1.0 + 3.0 * options.distance_scale_sigma);
+  } else {
+    problem.SetParameterBlockConstant(&distance_scale);
+  }
   for (size_t i = 0; i < n; ++i) {
     const double t0 = guess.pieces[i].t0;
     auto* cost = new ceres::DynamicAutoDiffCostFunction<PieceCost, 9>(new PieceCost(
         observations[i], t0, model, step, options.huber_sigmas, options.distance_loss_sigmas));
     cost->AddParameterBlock(9);
+    cost->AddParameterBlock(1);
     cost->SetNumResiduals(3 * static_cast<int>(observations[i].size()));
-    problem.AddResidualBlock(cost, nullptr, pieces[i].data());
+    problem.AddResidualBlock(cost, nullptr, pieces[i].data(), &distance_scale);
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(new MagnusPrior(
             guess.pieces[i].toss ? options.toss_magnus_sigma : options.magnus_sigma)),
@@ -380,14 +416,25 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
     piece.toss = guess.pieces[i].toss;
     for (int k = 0; k < 6; ++k) piece.state(k) = pieces[i][k];
     for (int k = 0; k < 3; ++k) piece.magnus(k) = pieces[i][6 + k];
-    // The report: the fit's own bearing residuals, without the losses (thresholds never met).
-    const PieceCost report(observations[i], piece.t0, model, step, 1e100, 1e100);
+    // The report: the fit's own residuals, without the losses.
+    const PieceCost report(observations[i], piece.t0, model, step, 0.0, 0.0);
     std::vector<double> r(3 * observations[i].size());
-    const double* params[] = {pieces[i].data()};
+    const double* params[] = {pieces[i].data(), &distance_scale};
     report(params, r.data());
+    std::vector<double> distance_shares;
     for (size_t k = 0; k < observations[i].size(); ++k) {
       sum += r[3 * k] * r[3 * k] + r[3 * k + 1] * r[3 * k + 1];
       count += 2;
+      const BearingObservation& o = observations[i][k];
+      if (o.distance > 0.0) {
+        distance_shares.push_back(std::abs(r[3 * k + 2]) * o.distance_sigma /
+                                  (distance_scale * o.distance));
+      }
+    }
+    if (!distance_shares.empty()) {
+      const auto mid = distance_shares.begin() + distance_shares.size() / 2;
+      std::nth_element(distance_shares.begin(), mid, distance_shares.end());
+      out.median_distance_error = std::max(out.median_distance_error, *mid);
     }
   }
   for (size_t i = 0; i + 1 < n; ++i) {
@@ -395,6 +442,7 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   }
   if (lead_in) out.start = to_junction(start, false);
   out.rms_bearing = std::sqrt(sum / std::max(1, count));
+  out.distance_scale = distance_scale;
   return out;
 }
 

@@ -66,6 +66,12 @@ struct Stroke {
   // With a lead-in: where the lead-in piece meets pieces[0].
   std::optional<Junction> start;
   double rms_bearing = 0.0;  // bearing residuals of the fit, in sigmas
+  // Per piece, the median over its views with a diameter of |fitted distance / (scale x the
+  // diameter's) - 1|; the largest of them. The losses let stray diameters go, but a piece most
+  // of them disagree with was placed where the ball was not (slid along its rays, where only the
+  // bearings hold it). 0: no diameters.
+  double median_distance_error = 0.0;
+  double distance_scale = 1.0;  // the fitted scale of the diameters' distances
 };
 
 // The last piece of the stroke before, already fitted and held fixed: pieces[0] starts where it
@@ -82,6 +88,13 @@ struct StrokeFitOptions {
   double toss_magnus_sigma = 0.1;  // 1/s, the same for a toss
   double toss_horizontal_sigma = 0.5;  // m/s, prior on a toss's horizontal velocity
   double contact_sigma = 0.002;        // m: how closely both pieces pass their contact point
+  // The diameters share a bias the per-view noise does not average out: a blurred ball reads
+  // short (its streak's sides are covered for less of the exposure), a shaded one short or long
+  // with the lighting. Their distances are fitted times one scale per fit, ~ N(1, sigma^2),
+  // where a bounce on a known plane or the lead-in anchors the fit (in free flight gravity's
+  // pull in the image alone would fix it, but the spin's pull confounds it); it stays within 3
+  // sigmas. 0: the scale is 1.
+  double distance_scale_sigma = 0.1;
   // The velocity after a bounce vs the bounce map of the velocity before (model.restitution,
   // model.friction): what spin can change, m/s.
   double bounce_sigma_horizontal = 0.7;
