@@ -1,4 +1,5 @@
 // p4track track: the tracker over recorded or live sources (paper §3), writing the run's files.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -192,15 +193,20 @@ int Run(TrackArgs a) {
   segment::ColorClassSet classes =
       !a.classes.empty() ? ReadColorClasses(a.classes) : NamedClasses(a.ball);
   // --ball auto learns from recordings with two or more cameras (views that agree across
-  // cameras and fly are the ball); otherwise the orange ball's classes (docs/DECISIONS.md).
+  // cameras and fly are the ball); one camera's recordings choose among the named colours the
+  // one that flies; live sources: the orange ball's classes (docs/DECISIONS.md).
+  bool choose = false;
   if (learn) {
     const auto live = std::find_if(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
-    if (live != a.sources.end() || rig.size() < 2) {
+    if (live != a.sources.end()) {
       spdlog::warn(
-          "--ball auto learns the ball's colour from recordings of two or more cameras; {}: "
-          "tracking an orange ball (give --ball orange|white|yellow or --classes FILE, e.g. the "
-          "ball_classes.yaml a run on a recording of this hall saved)",
-          live != a.sources.end() ? *live + " is live" : "the rig has one camera");
+          "--ball auto learns the ball's colour from recordings; {} is live: tracking an orange "
+          "ball (give --ball orange|white|yellow or --classes FILE, e.g. the ball_classes.yaml a "
+          "run on a recording of this hall saved)",
+          *live);
+      learn = false;
+    } else if (rig.size() < 2) {
+      choose = true;
       learn = false;
     }
   }
@@ -219,6 +225,33 @@ int Run(TrackArgs a) {
                     : a.streaks == "off" ? track::FrameSetOptions::Streaks::kOff
                                          : track::FrameSetOptions::Streaks::kAuto;
   segment::BallColour::Named(a.ball, &options.ball_colour);
+  if (choose) {
+    // Not white: the background model it needs takes whatever moves for the ball (an arm, a
+    // shirt), which flies in one camera's view as often as the ball does.
+    const std::vector<std::string> names{"orange", "yellow"};
+    spdlog::info(
+        "one camera: choosing the ball's colour among {} by what flies in the first 10 s (a "
+        "second camera would let it be learnt)",
+        fmt::join(names, ", "));
+    const NamedColourChoice chosen = ChooseNamedColour(rig, a.sources, names, options);
+    std::vector<std::string> counts;
+    for (const auto& [name, views] : chosen.views) {
+      counts.push_back(fmt::format("{} {}", name, views));
+    }
+    if (chosen.name.empty()) {
+      spdlog::warn(
+          "no ball of a named colour flew in the first {:.1f} s (views of confirmed flights: "
+          "{}): tracking an orange ball (give --ball or --classes)",
+          chosen.seconds, fmt::join(counts, ", "));
+    } else {
+      spdlog::info("tracking {} {} ball (views of confirmed flights in {:.1f} s: {})",
+                   chosen.name == "orange" ? "an" : "a", chosen.name, chosen.seconds,
+                   fmt::join(counts, ", "));
+      classes = NamedClasses(chosen.name);
+      segment::BallColour::Named(chosen.name, &options.ball_colour);
+      white = chosen.name == "white";
+    }
+  }
   if (learn) {
     // The folder first: a run that cannot save what it learns should not spend the time.
     std::error_code ec;

@@ -5,6 +5,8 @@
 #include "p4/core/error.h"
 #include "p4/core/table.h"
 #include "p4/pipeline/frame_set_reader.h"
+#include "p4/segment/ball_colour.h"
+#include "p4/segment/color_classes.h"
 
 namespace p4 {
 
@@ -100,6 +102,46 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
         result.seconds, lit.y, lit.u, lit.v));
   }
   return result;
+}
+
+NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::string>& sources,
+                                    const std::vector<std::string>& names,
+                                    const track::FrameSetOptions& tracking,
+                                    const ChooseColourOptions& options) {
+  if (!options.IsValid()) {
+    throw Error("choosing the ball's colour: seconds and the later names' ratio must be positive");
+  }
+  NamedColourChoice choice;
+  int best = 0;
+  for (const std::string& name : names) {
+    track::FrameSetOptions per_name = tracking;
+    segment::BallColour::Named(name, &per_name.ball_colour);
+    per_name.use_background = per_name.use_background || name == "white";
+    per_name.confirm_tracks = true;
+    const segment::ColorClassSet classes = name == "white"    ? segment::DefaultWhiteBall()
+                                           : name == "yellow" ? segment::DefaultYellowBall()
+                                                              : segment::DefaultOrangeBall();
+    track::FrameSetTracker tracker(rig, classes, per_name);
+    FrameSetReader reader(sources, false, RigClocks(rig));
+    std::optional<TimeNs> first;
+    FrameSet set;
+    int views = 0;
+    while (reader.Next(&set)) {
+      if (!first) first = set.t;
+      choice.seconds = ToSeconds(set.t - *first);
+      if (choice.seconds > options.max_seconds) break;
+      const track::FrameSetResult r = tracker.Process(set.t, set.images, set.times);
+      // A tracklet's points become rows when it is confirmed; a row taken at once is one.
+      views += static_cast<int>(r.revisions.size());
+      if (r.state && r.state->measured && !r.tentative) ++views;
+    }
+    choice.views.emplace_back(name, views);
+    if (views > 0 && (choice.name.empty() || views > options.later_ratio * best)) {
+      best = views;
+      choice.name = name;
+    }
+  }
+  return choice;
 }
 
 }  // namespace p4

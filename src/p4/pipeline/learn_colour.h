@@ -47,4 +47,32 @@ struct LearnColourResult {
 LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>& sources,
                                   const LearnColourOptions& options);
 
+// One camera: no second view tells the ball from whatever else moves, so its colour is chosen
+// among named ones instead of learnt: the one whose tracker, over the sources' first seconds,
+// takes the most views of confirmed flights (track::TrackInitiator: what flies; a shirt or a
+// floor of one of the colours does not). The names come in order of preference and a later one
+// must take `later_ratio` times the views of the one before it: the colours' boxes overlap (an
+// orange ball's lit side reads yellow, so an orange ball also flies as a yellow one), while a
+// yellow ball takes next to no orange views.
+struct ChooseColourOptions {
+  double max_seconds = 10.0;  // of the sources looked at, from their first set
+  double later_ratio = 2.0;   // > 0
+
+  bool IsValid() const { return max_seconds > 0.0 && later_ratio > 0.0; }
+};
+
+struct NamedColourChoice {
+  std::string name;                                // the choice ("" when none flew)
+  std::vector<std::pair<std::string, int>> views;  // each name's views of a confirmed track
+  double seconds = 0.0;                            // of the sources looked at
+};
+
+// `tracking`: the options to track with (their ball colour and detector are set per name: the
+// background model for a white ball, as `--detector auto` does). Throws p4::Error when a source
+// fails to open.
+NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::string>& sources,
+                                    const std::vector<std::string>& names,
+                                    const track::FrameSetOptions& tracking,
+                                    const ChooseColourOptions& options = {});
+
 }  // namespace p4
