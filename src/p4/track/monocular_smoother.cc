@@ -11,19 +11,25 @@
 namespace p4::track {
 namespace {
 
-// Least-squares quadratic in (t - t_ref) through the views' ideal pixels, evaluated at t_ref.
+// Least-squares polynomial of `degree` in (t - t_ref) through the views' ideal pixels,
+// evaluated at t_ref.
 template <typename Views>
-Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
+Eigen::Vector2d PolynomialAt(const Views& views, double t_ref, int degree) {
   const int n = static_cast<int>(views.size());
-  Eigen::MatrixXd a(n, 3);
+  Eigen::MatrixXd a(n, degree + 1);
   Eigen::MatrixXd b(n, 2);
   for (int i = 0; i < n; ++i) {
     const double dt = views[i].t - t_ref;
-    a.row(i) << 1.0, dt, dt * dt;
+    double power = 1.0;
+    for (int k = 0; k <= degree; ++k, power *= dt) a(i, k) = power;
     b.row(i) = views[i].ideal_px.transpose();
   }
   const Eigen::MatrixXd x = a.colPivHouseholderQr().solve(b);
   return x.row(0).transpose();
+}
+template <typename Views>
+Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
+  return PolynomialAt(views, t_ref, 2);
 }
 
 }  // namespace
@@ -31,8 +37,8 @@ Eigen::Vector2d QuadraticAt(const Views& views, double t_ref) {
 bool MonocularSmootherOptions::IsValid(std::string* error) const {
   if (!fit.IsValid(error)) return false;
   if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px &&
-        adopt_px >= 0.0 && max_gap_s > 0.0 && max_window_s > 0.0 && contact_margin >= 0.0 &&
-        contact_depth_agree > 0.0 && contact_depth_agree_share >= 0.0 &&
+        adopt_px >= 0.0 && max_gap_s > 0.0 && lead_max_gap_frames > 0.0 && max_window_s > 0.0 &&
+        contact_margin >= 0.0 && contact_depth_agree > 0.0 && contact_depth_agree_share >= 0.0 &&
         bounce_speed_slack >= 0.0 && bounce_min_up_across >= 0.0 && max_fit_rms > 0.0 &&
         max_fit_rms_short > 0.0 && merge_rms > 0.0 && max_distance_error > 0.0)) {
     *error = "monocular smoother: sigmas, thresholds and times must be positive";
@@ -158,6 +164,16 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
     } else {
       off_.clear();  // strays between views that fit
       piece_.push_back(*view);
+      // A piece's first view may be the bend's own moment (the racket's contact, then frames
+      // the detector missed while the ball was fast): the line of the three views after it,
+      // taken back to it, tells (before the piece's path, which it would bend, is used); off by
+      // a bend, it belongs to neither piece.
+      if (piece_.size() == 4 &&
+          (PolynomialAt(std::span(piece_.begin() + 1, piece_.end()), piece_.front().t, 1) -
+           piece_.front().ideal_px)
+                  .norm() > options_.bend_px) {
+        piece_.erase(piece_.begin());
+      }
     }
     if (pending_bend_ && static_cast<int>(piece_.size()) >= options_.min_piece_views) {
       DecideBend();
@@ -385,13 +401,18 @@ void MonocularSmoother::FitWindow(bool with_open) {
     size_t i = 0;
     while (i < closed) {
       const bool near = prev && observations[i].front().t - prev->after_t <= options_.max_gap_s;
+      // Frames missed between them may hide another bend (a fast return stopped by the net): a
+      // run is led in only across a gap of a few of its own frame periods.
+      const double period = observations[i][1].t - observations[i][0].t;
+      const bool leads = near && observations[i].front().t - prev->after_t <=
+                                     options_.lead_max_gap_frames * period;
       std::optional<Stroke> run;
       size_t end = i;
       bool led = false;
       // Led in first; a run the lead-in does not fit (a bounce misjudged as free between them)
       // may stand alone.
       for (const bool with_lead : {true, false}) {
-        if (with_lead && !near) continue;
+        if (with_lead && !leads) continue;
         for (size_t j = closed; j > i && !run; --j) {
           int run_views = 0;
           bool run_short = false;

@@ -47,6 +47,9 @@ struct MonocularSmootherOptions {
   int min_fit_views = 3;    // a shorter piece breaks the chain (the filter's rows stay)
   int min_lone_views = 12;  // a window with no bounce, hit or lead-in to hold it
   double max_gap_s = 0.1;   // views farther apart break the chain
+  // Where a window is cut into runs, a run is led in by the one before across at most this many
+  // of its frame periods (more missed frames may hide another bend).
+  double lead_max_gap_frames = 4.5;
   double max_window_s = 2.5;         // a longer window without a bounce is handed on anyway
   double contact_margin = 0.05;      // m beyond the table's outline that still counts as on it
   double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most...
