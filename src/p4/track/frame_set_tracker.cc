@@ -46,6 +46,11 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     }
     return false;
   }
+  if (!(hall_half_length > table::kHalfLength) || !(hall_half_width > table::kHalfWidth) ||
+      !(hall_max_z > 0.0)) {
+    if (error) *error = "the hall must hold the table and reach above it";
+    return false;
+  }
   if (threads < 1 || threads > 64) {
     if (error) *error = "threads must be 1-64";
     return false;
@@ -771,7 +776,8 @@ std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& came
                                            EllipseAxis::kAcrossRadius, table::kBallRadius);
   if (!sphere) return std::nullopt;
   const Eigen::Vector3d& q = sphere->point;  // in the hall, above the floor
-  if (std::abs(q.x()) > 6.0 || std::abs(q.y()) > 4.0 || q.z() < table::kFloorZ || q.z() > 3.0) {
+  if (std::abs(q.x()) > options_.hall_half_length || std::abs(q.y()) > options_.hall_half_width ||
+      q.z() < table::kFloorZ || q.z() > options_.hall_max_z) {
     return std::nullopt;
   }
   Measurement m;

@@ -116,6 +116,11 @@ struct FrameSetOptions {
   double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
+  // The hall about the table's centre where one camera's diameter may place the ball (m: half
+  // its length and width, the highest centre; the floor is the lowest): farther is a misread.
+  double hall_half_length = 6.0;
+  double hall_half_width = 4.0;
+  double hall_max_z = 3.0;
   // In a rig of several cameras a lone view's row is a measurement only where the depth along
   // its ray is known to this (m): by the smoothed track when lone views wait (below), else by the
   // filter's prediction, at once. Beyond it the row would be a guess, not a measurement.
@@ -282,7 +287,8 @@ class FrameSetTracker {
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         std::vector<std::pair<int, int>>* used) const;
   // A view placed by its diameter (paper §3.2), known across its ray to pixel_sigma and along it
-  // to diameter_sigma; nullopt outside the hall (6 x 4 m about the table's centre, floor to 3 m).
+  // to diameter_sigma; nullopt outside the hall (hall_half_length, hall_half_width, floor to
+  // hall_max_z).
   std::optional<Measurement> SphereMeasurement(const Camera& camera, const Detection& d) const;
   // Several cameras, a track, no two views that agree: the view nearest the predicted one in
   // its image (Mahalanobis, the prediction's covariance projected; lone_view_gate_chi2,

@@ -610,5 +610,23 @@ TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   EXPECT_FALSE(o.IsValid(&why));
 }
 
+// One camera's hall must hold the table (its half length 1.37 m, half width 0.7625 m).
+TEST(FrameSetOptions, TheHallMustHoldTheTable) {
+  std::string why;
+  FrameSetOptions o;
+  o.hall_half_length = 1.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("hall"), std::string::npos) << why;
+  o = {};
+  o.hall_half_width = 0.5;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = {};
+  o.hall_max_z = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = {};
+  o.hall_half_length = 3.0, o.hall_half_width = 2.0, o.hall_max_z = 2.0;  // a small club room
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+}
+
 }  // namespace
 }  // namespace p4::track
