@@ -93,13 +93,6 @@ TrackArgs ResumedArgs(const std::string& dir, bool* finished) {
   }
 }
 
-// The colour classes of a named ball (orange for "auto", the hint when nothing can be learnt).
-segment::ColorClassSet NamedClasses(const std::string& ball) {
-  return ball == "white"    ? segment::DefaultWhiteBall()
-         : ball == "yellow" ? segment::DefaultYellowBall()
-                            : segment::DefaultOrangeBall();
-}
-
 // Cameras whose clocks the rig does not give are synchronised from the ball before tracking
 // (recordings of two or more cameras); the clocks found are saved as rig_synced.yaml in the run's
 // folder. A rig that gives them, one camera, live sources or --no-sync: as the rig says.
@@ -110,7 +103,7 @@ Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
   if (a.no_sync || rig.size() < 2 || !unknown || live) return rig;
   const segment::ColorClassSet classes = !a.classes.empty() ? ReadColorClasses(a.classes)
                                          : a.ball == "auto" ? segment::AnyColour()
-                                                            : NamedClasses(a.ball);
+                                                            : segment::NamedBall(a.ball);
   BallCandidateOptions candidates;
   candidates.seconds = std::max(15.0, 2.0 * a.max_offset + 5.0);
   // The faint streaks' colour: the hint, orange when the ball is unknown.
@@ -191,7 +184,7 @@ int Run(TrackArgs a) {
   const Rig rig = SyncIfNeeded(a, ReadRig(a.rig));
   bool learn = a.classes.empty() && a.ball == "auto";
   segment::ColorClassSet classes =
-      !a.classes.empty() ? ReadColorClasses(a.classes) : NamedClasses(a.ball);
+      !a.classes.empty() ? ReadColorClasses(a.classes) : segment::NamedBall(a.ball);
   // --ball auto learns from recordings with two or more cameras (views that agree across
   // cameras and fly are the ball); one camera's recordings choose among the named colours the
   // one that flies; live sources: the orange ball's classes (docs/DECISIONS.md).
@@ -247,7 +240,7 @@ int Run(TrackArgs a) {
       spdlog::info("tracking {} {} ball (views of confirmed flights in {:.1f} s: {})",
                    chosen.name == "orange" ? "an" : "a", chosen.name, chosen.seconds,
                    fmt::join(counts, ", "));
-      classes = NamedClasses(chosen.name);
+      classes = segment::NamedBall(chosen.name);
       segment::BallColour::Named(chosen.name, &options.ball_colour);
       white = chosen.name == "white";
     }

@@ -118,10 +118,7 @@ NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::strin
     segment::BallColour::Named(name, &per_name.ball_colour);
     per_name.use_background = per_name.use_background || name == "white";
     per_name.confirm_tracks = true;
-    const segment::ColorClassSet classes = name == "white"    ? segment::DefaultWhiteBall()
-                                           : name == "yellow" ? segment::DefaultYellowBall()
-                                                              : segment::DefaultOrangeBall();
-    track::FrameSetTracker tracker(rig, classes, per_name);
+    track::FrameSetTracker tracker(rig, segment::NamedBall(name), per_name);
     FrameSetReader reader(sources, false, RigClocks(rig));
     std::optional<TimeNs> first;
     FrameSet set;

@@ -69,6 +69,12 @@ ColorClassSet DefaultYellowBall() {
   set.classes.push_back({"ball_dark", {80, 160}, {50, 105}, {132, 165}});
   return set;
 }
+
+ColorClassSet NamedBall(const std::string& name) {
+  return name == "white"    ? DefaultWhiteBall()
+         : name == "yellow" ? DefaultYellowBall()
+                            : DefaultOrangeBall();
+}
 ColorClassSet DefaultWhiteBall() {
   ColorClassSet set;
   set.classes.push_back({"ball_white", {185, 255}, {112, 144}, {112, 144}});

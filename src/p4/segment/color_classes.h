@@ -48,6 +48,8 @@ ColorClassSet DefaultOrangeBall();
 ColorClassSet DefaultWhiteBall();
 // Classes for a yellow ball.
 ColorClassSet DefaultYellowBall();
+// The classes of a named ball: "white", "yellow", anything else orange (the paper's colour).
+ColorClassSet NamedBall(const std::string& name);
 
 struct YuvSample {
   uint8_t y, u, v;

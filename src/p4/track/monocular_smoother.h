@@ -121,7 +121,7 @@ class MonocularSmoother {
   // Fits the window's pieces (and the open piece when `with_open`) after the lead-in and makes
   // the rows up to the window's last piece final.
   void FitWindow(bool with_open);
-  // The fit explains the bearings within max_rms and the diameters (max_distance_sigmas).
+  // The fit explains the bearings within max_rms and the diameters (max_distance_error).
   bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the
