@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "p4/core/error.h"
 #include "p4/core/table.h"
 #include "p4/pipeline/frame_set_reader.h"
@@ -9,6 +11,32 @@
 #include "p4/segment/color_classes.h"
 
 namespace p4 {
+
+namespace {
+
+// Reads the sources' sets from their first one for at most `max_seconds`, handing each to
+// `take` until it returns false; returns the seconds looked at. Throws p4::Error when the
+// sources do not match the rig's cameras or one fails to open.
+template <typename Take>
+double ReadFirstSeconds(const Rig& rig, const std::vector<std::string>& sources, double max_seconds,
+                        Take&& take) {
+  if (static_cast<int>(sources.size()) != rig.size()) {
+    throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
+                            sources.size()));
+  }
+  FrameSetReader reader(sources, false, RigClocks(rig));
+  std::optional<TimeNs> first;
+  double seconds = 0.0;
+  FrameSet set;
+  while (reader.Next(&set)) {
+    if (!first) first = set.t;
+    seconds = ToSeconds(set.t - *first);
+    if (seconds > max_seconds || !take(set)) break;
+  }
+  return seconds;
+}
+
+}  // namespace
 
 bool LearnColourOptions::IsValid(std::string* error) const {
   if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1 || !(moving_clear >= 0.0)) {
@@ -24,10 +52,6 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
                                   const LearnColourOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw Error(why);
-  if (static_cast<int>(sources.size()) != rig.size()) {
-    throw Error(fmt::format("the rig has {} camera(s) but {} source(s) were given", rig.size(),
-                            sources.size()));
-  }
   track::FrameSetOptions tracking = options.tracking;
   tracking.use_background = false;
   tracking.measure_on_background = false;
@@ -43,21 +67,15 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
-  FrameSetReader reader(sources, false, RigClocks(rig));
   segment::ColourSamples samples;
   LearnColourResult result;
-  std::optional<TimeNs> first;
-  FrameSet set;
   bool new_track = false;
-  while (reader.Next(&set)) {
-    if (!first) first = set.t;
-    result.seconds = ToSeconds(set.t - *first);
-    if (result.seconds > options.max_seconds) break;
+  result.seconds = ReadFirstSeconds(rig, sources, options.max_seconds, [&](const FrameSet& set) {
     const track::FrameSetResult r = tracker.Process(set.t, set.images, set.times);
     // Only views the filter took at once: the track is confirmed, the view is the ball's.
     if (!r.state || !r.state->measured || r.tentative || !r.measurement ||
         r.measurement->cameras < 2) {
-      continue;
+      return true;
     }
     if (r.new_track) new_track = true;  // a tracklet confirmed
     // Over the table and above it, where the ball in play flies and the players' shoes, legs
@@ -67,7 +85,7 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
     if (std::abs(p.x()) > table::kHalfLength || std::abs(p.y()) > table::kHalfWidth ||
         p.z() < table::kBallRadius || p.z() > options.max_height ||
         r.state->velocity.norm() < options.min_speed) {
-      continue;
+      return true;
     }
     if (new_track) ++result.tracks, new_track = false;  // its first view sampled
     for (const track::Detection& d : r.detections) {
@@ -81,11 +99,10 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
                         std::span<const Eigen::Vector2d>(&d.observed, 1),
                         options.moving_clear * d.diameter_px, options.learning);
     }
-    if (result.views >= options.min_views && result.tracks >= options.min_tracks &&
-        samples.size() >= 2 * options.learning.min_samples) {
-      break;
-    }
-  }
+    // Enough seen: stop early.
+    return result.views < options.min_views || result.tracks < options.min_tracks ||
+           samples.size() < 2 * options.learning.min_samples;
+  });
   if (result.views == 0 || !samples.Learn(options.learning, &result.colour, &why)) {
     throw Error(fmt::format(
         "--ball auto: the ball was not seen flying in the first {:.1f} s of the sources ({} "
@@ -119,19 +136,14 @@ NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::strin
     per_name.use_background = per_name.use_background || name == "white";
     per_name.confirm_tracks = true;
     track::FrameSetTracker tracker(rig, segment::NamedBall(name), per_name);
-    FrameSetReader reader(sources, false, RigClocks(rig));
-    std::optional<TimeNs> first;
-    FrameSet set;
     int views = 0;
-    while (reader.Next(&set)) {
-      if (!first) first = set.t;
-      choice.seconds = ToSeconds(set.t - *first);
-      if (choice.seconds > options.max_seconds) break;
+    choice.seconds = ReadFirstSeconds(rig, sources, options.max_seconds, [&](const FrameSet& set) {
       const track::FrameSetResult r = tracker.Process(set.t, set.images, set.times);
       // A tracklet's points become rows when it is confirmed; a row taken at once is one.
       views += static_cast<int>(r.revisions.size());
       if (r.state && r.state->measured && !r.tentative) ++views;
-    }
+      return true;
+    });
     choice.views.emplace_back(name, views);
     if (views > 0 && (choice.name.empty() || views > options.later_ratio * best)) {
       best = views;

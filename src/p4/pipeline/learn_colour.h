@@ -43,7 +43,8 @@ struct LearnColourResult {
 };
 
 // Throws p4::Error when the ball was not seen flying enough to learn its colour, or what flew has
-// no ball's colour (a dark grey), saying what was seen; or when a source fails to open.
+// no ball's colour (a dark grey), saying what was seen; or when the sources do not match the
+// rig's cameras or one fails to open.
 LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>& sources,
                                   const LearnColourOptions& options);
 
@@ -68,8 +69,8 @@ struct NamedColourChoice {
 };
 
 // `tracking`: the options to track with (their ball colour and detector are set per name: the
-// background model for a white ball, as `--detector auto` does). Throws p4::Error when a source
-// fails to open.
+// background model for a white ball, as `--detector auto` does). Throws p4::Error when the
+// sources do not match the rig's cameras or one fails to open.
 NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::string>& sources,
                                     const std::vector<std::string>& names,
                                     const track::FrameSetOptions& tracking,

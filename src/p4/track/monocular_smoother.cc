@@ -410,33 +410,12 @@ void MonocularSmoother::FitWindow(bool with_open) {
       size_t end = i;
       bool led = false;
       // Led in first; a run the lead-in does not fit (a bounce misjudged as free between them)
-      // may stand alone.
+      // may stand alone. The longest run that holds wins.
       for (const bool with_lead : {true, false}) {
         if (with_lead && !leads) continue;
         for (size_t j = closed; j > i && !run; --j) {
-          int run_views = 0;
-          bool run_short = false;
-          for (size_t k = i; k < j; ++k) {
-            const int size = static_cast<int>(observations[k].size());
-            run_views += size;
-            run_short = run_short || size < options_.min_piece_views;
-          }
-          // Alone, a piece needs many views unless led in (as a window of one, above).
-          if (j - i == 1 && !with_lead &&
-              run_views < std::max(options_.min_piece_views, options_.min_lone_views)) {
-            continue;
-          }
-          Stroke part;
-          part.pieces.assign(guess.pieces.begin() + i, guess.pieces.begin() + j);
-          part.junctions.assign(guess.junctions.begin() + i, guess.junctions.begin() + (j - 1));
-          if (with_lead) part.start = prev_junction;
-          auto fit_part = FitStroke(std::span(observations).subspan(i, j - i), part, options_.fit,
-                                    with_lead ? &*prev : nullptr);
-          const double part_max =
-              run_short && j - i > 1 ? options_.max_fit_rms_short : options_.max_fit_rms;
-          if (Holds(fit_part, part_max)) {
-            run = std::move(fit_part), end = j, led = with_lead;
-          }
+          run = FitRun(observations, guess, i, j, with_lead ? &*prev : nullptr, prev_junction);
+          end = j, led = with_lead;
         }
         if (run) break;
       }
@@ -470,6 +449,30 @@ void MonocularSmoother::FitWindow(bool with_open) {
   }
   window_.clear();
   junctions_.erase(junctions_.begin(), junctions_.begin() + std::min(junctions_.size(), all));
+}
+
+std::optional<Stroke> MonocularSmoother::FitRun(
+    std::span<const std::vector<BearingObservation>> observations, const Stroke& guess, size_t i,
+    size_t j, const LeadIn* lead, const std::optional<Junction>& start) const {
+  int views = 0;
+  bool has_short = false;
+  for (size_t k = i; k < j; ++k) {
+    const int size = static_cast<int>(observations[k].size());
+    views += size;
+    has_short = has_short || size < options_.min_piece_views;
+  }
+  // Alone, a piece needs many views unless led in (as a window of one).
+  if (j - i == 1 && !lead && views < std::max(options_.min_piece_views, options_.min_lone_views)) {
+    return std::nullopt;
+  }
+  Stroke part;
+  part.pieces.assign(guess.pieces.begin() + i, guess.pieces.begin() + j);
+  part.junctions.assign(guess.junctions.begin() + i, guess.junctions.begin() + (j - 1));
+  if (lead) part.start = start;
+  std::optional<Stroke> fit = FitStroke(observations.subspan(i, j - i), part, options_.fit, lead);
+  const double max_rms = has_short && j - i > 1 ? options_.max_fit_rms_short : options_.max_fit_rms;
+  if (!Holds(fit, max_rms)) return std::nullopt;
+  return fit;
 }
 
 void MonocularSmoother::Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from,

@@ -25,6 +25,7 @@
 
 #include <deque>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,11 @@ class MonocularSmoother {
   // Fits the window's pieces (and the open piece when `with_open`) after the lead-in and makes
   // the rows up to the window's last piece final.
   void FitWindow(bool with_open);
+  // The window's pieces [i, j) fitted as one run after `lead` (none: alone) meeting it at
+  // `start`, when the fit holds; a lone piece needs min_lone_views unless led in.
+  std::optional<Stroke> FitRun(std::span<const std::vector<BearingObservation>> observations,
+                               const Stroke& guess, size_t i, size_t j, const LeadIn* lead,
+                               const std::optional<Junction>& start) const;
   // The fit explains the bearings within max_rms and the diameters (max_distance_error).
   bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
