@@ -33,11 +33,9 @@ int Run(const SyncArgs& a) {
       throw Error(s + ": sync reads recordings (files), not live sources");
     if (!std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
-  const segment::ColorClassSet classes = !a.classes.empty()   ? ReadColorClasses(a.classes)
-                                         : a.ball == "orange" ? segment::DefaultOrangeBall()
-                                         : a.ball == "yellow" ? segment::DefaultYellowBall()
-                                         : a.ball == "white"  ? segment::DefaultWhiteBall()
-                                                              : segment::AnyColour();
+  const segment::ColorClassSet classes = !a.classes.empty() ? ReadColorClasses(a.classes)
+                                         : a.ball == "any"  ? segment::AnyColour()
+                                                            : segment::NamedBall(a.ball);
   BallCandidateOptions candidates;
   // Enough play to cover the largest offset and then some.
   candidates.seconds = a.seconds > 0.0 ? a.seconds : std::max(15.0, 2.0 * a.max_offset + 5.0);

@@ -24,8 +24,8 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
     return false;
   }
-  if (roi_min_px < 8 || roi_max_px < roi_min_px) {
-    if (error) *error = "ROI sizes: need 8 <= min <= max";
+  if (roi_min_px < 8 || roi_max_px < roi_min_px || roi_max_missed < 0) {
+    if (error) *error = "ROI: need sizes 8 <= min <= max and roi_max_missed >= 0";
     return false;
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
@@ -168,13 +168,13 @@ void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Det
 void FrameSetTracker::SearchCamera(int c, const ImageView& image,
                                    const std::optional<Eigen::Vector3d>& predicted,
                                    const std::optional<Eigen::Vector3d>& velocity,
-                                   const Eigen::Matrix3d& covariance, CameraSearch* search_out,
-                                   std::vector<Detection>* out) {
+                                   const Eigen::Matrix3d& covariance, bool window,
+                                   CameraSearch* search_out, std::vector<Detection>* out) {
   std::vector<segment::Region>& regions = regions_[c];
   const Camera& camera = rig_.cameras[c];
   CameraSearch& search = *search_out;
   search.present = true;
-  if (options_.use_roi && predicted) {
+  if (options_.use_roi && predicted && window) {
     const auto px = camera.Project(*predicted);
     if (px) {
       const double d = ExpectedDiameterPx(camera, *predicted);
@@ -273,11 +273,13 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     found = both(search.roi);
     // The window holds the ball only if a region there is the ball's size at the predicted point
     // (after a hit the filter still sends the ball on, into the player's arm): else the whole
-    // image is searched.
+    // image is searched. A region that is part of the hall (a second ball lying on the floor,
+    // dropped below) does not hold it.
     if (options_.roi_needs_size) {
       const double expected = ExpectedDiameterPx(camera, *predicted);
       bool sized = false;
       for (int k = 0; k < found && !sized; ++k) {
+        if (IsStaticSpot(c, {region_of(k).cx, region_of(k).cy})) continue;
         const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
         sized = ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio;
       }
@@ -387,6 +389,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // Each camera's frame period (the shortest interval between its images) and, for the cameras
   // that look for streaks, the velocity predicted at their time.
   std::vector<std::optional<Eigen::Vector3d>> camera_velocity(n);
+  std::vector<char> window(n, 1);
   for (int c = 0; c < present; ++c) {
     if (!images[c]) continue;
     const TimeNs at = image_time(c);
@@ -401,11 +404,14 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     if (predicted && fresh && SearchesStreaks(c)) {
       camera_velocity[c] = tracker_.PredictVelocity(at);
     }
+    window[c] =
+        !last_taken_t_ || frame_period_s_[c] <= 0.0 ||
+        ToSeconds(at - *last_taken_t_) <= (options_.roi_max_missed + 1.5) * frame_period_s_[c];
   }
   const auto search = [&](int c) {
     if (images[c]) {
       SearchCamera(c, *images[c], camera_predicted[c], camera_velocity[c], predicted_covariance,
-                   &result.searches[c], &candidates[c]);
+                   window[c] != 0, &result.searches[c], &candidates[c]);
     }
   };
   if (pool_ && present > 1) {
@@ -590,6 +596,15 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
   result->new_track = true;
+}
+
+bool FrameSetTracker::IsStaticSpot(int camera, const Eigen::Vector2d& pixel) const {
+  for (const StaticSpot& spot : static_spots_[camera]) {
+    if ((spot.pixel - pixel).norm() <= options_.static_px) {
+      return spot.count + (spot.seen ? 0 : 1) >= options_.static_frames;
+    }
+  }
+  return false;
 }
 
 int FrameSetTracker::SpotCount(int camera, const Eigen::Vector2d& pixel) {

@@ -59,6 +59,10 @@ struct FrameSetOptions {
   bool use_roi = true;
   int roi_min_px = 40;   // the paper's fixed 40 px window...
   int roi_max_px = 240;  // ...grown with the predicted ball size and speed
+  // The window is searched while the track has missed at most roi_max_missed of the camera's
+  // frames; after that the whole image (a coasting filter's path runs on after a hit, into the
+  // player's arm or onto a ball lying on the floor, which the window would take for the ball).
+  int roi_max_missed = 1;
   bool single_camera_fallback = true;
   double pixel_sigma = 0.5;        // centroid noise, px (for measurement covariances)
   double diameter_sigma = 0.35;    // diameter noise, px (refined)
@@ -243,9 +247,10 @@ class FrameSetTracker {
   // One camera's part of a time-stamp: its ROI, segmentation, candidate filtering. Touches only
   // that camera's state (so cameras may run in parallel).
   // `velocity` and `covariance`: the predicted velocity and position covariance (with a track).
+  // `window`: whether to search the window around `predicted` first (else the whole image).
   void SearchCamera(int c, const ImageView& image, const std::optional<Eigen::Vector3d>& predicted,
                     const std::optional<Eigen::Vector3d>& velocity,
-                    const Eigen::Matrix3d& covariance, CameraSearch* search,
+                    const Eigen::Matrix3d& covariance, bool window, CameraSearch* search,
                     std::vector<Detection>* out);
   // Whether camera c looks for faint streaks (FrameSetOptions::streaks), and its view of one
   // along the predicted path.
@@ -319,6 +324,9 @@ class FrameSetTracker {
   };
   // Sets in a row with a region within static_px of pixel, this one included.
   int SpotCount(int camera, const Eigen::Vector2d& pixel);
+  // True when a region at pixel would be dropped as part of the hall (SpotCount would reach
+  // static_frames); counts nothing.
+  bool IsStaticSpot(int camera, const Eigen::Vector2d& pixel) const;
   void AgeStaticSpots(int camera, const CameraSearch& search);
 
   std::vector<segment::BlobFinder> finders_;

@@ -372,6 +372,67 @@ TEST_F(FrameSetTrackerTest, AnArmInTheWindowDoesNotHideTheBallElsewhere) {
   }
 }
 
+TEST_F(FrameSetTrackerTest, ABallLyingOnTheFloorDoesNotHoldTheWindow) {
+  // A spare ball lies still where, after a hit, the coasting filter sends the ball: a region of
+  // the ball's size in the window, but part of the hall (static for static_frames sets), so the
+  // whole image is searched and the ball is found where it flies.
+  FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
+  const auto paint_spare = [&] {
+    for (int c = 0; c < 2; ++c) {
+      const auto px = rig_.cameras[c].Project(Ball(4));
+      ASSERT_TRUE(px.has_value());
+      const double depth = (rig_.cameras[c].cam_from_world * Ball(4)).z();
+      PaintOrange(c, px->x(), px->y() + 12.0, table::kBallRadius * rig_.cameras[c].fx / depth);
+    }
+  };
+  const Eigen::Vector3d away(1.0, -0.5, 0.5);
+  for (int k = 0; k < 45; ++k) {
+    // The ball flies from set 40 on (Ball(0)..Ball(3)), then is hit away.
+    const std::optional<Eigen::Vector3d> ball =
+        k < 40 ? std::nullopt : std::optional<Eigen::Vector3d>(k < 44 ? Ball(k - 40) : away);
+    auto views = Frames(ball, k);
+    paint_spare();
+    const auto result = tracker.Process(FromSeconds(k / 120.0), views);
+    if (k == 44) {
+      EXPECT_TRUE(result.searches[0].fell_back);
+      EXPECT_TRUE(result.searches[1].fell_back);
+      ASSERT_TRUE(result.measurement.has_value());
+      EXPECT_LT((result.measurement->position - away).norm(), 0.01);
+    }
+  }
+}
+
+TEST_F(FrameSetTrackerTest, ACoastingTrackSearchesTheWholeImage) {
+  // After a hit the filter coasts on and camera 0's window follows something of the ball's size
+  // along the old path (an arm's edge). Once the track has missed more than roi_max_missed sets,
+  // the cameras search the whole image and the ball is found where it flies; a window kept for
+  // longer (roi_max_missed 100) holds camera 0 on the arm and the ball stays lost.
+  const Eigen::Vector3d away(1.0, -0.5, 0.5);
+  for (const int max_missed : {1, 100}) {
+    FrameSetOptions options;
+    options.roi_max_missed = max_missed;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    std::optional<FrameSetResult> last;
+    for (int k = 0; k < 8; ++k) {
+      auto views = Frames(k < 4   ? std::optional<Eigen::Vector3d>(Ball(k))
+                          : k < 7 ? std::nullopt
+                                  : std::optional<Eigen::Vector3d>(away),
+                          k);
+      if (k >= 4) {
+        const auto px = rig_.cameras[0].Project(Ball(k));
+        ASSERT_TRUE(px.has_value());
+        const double depth = (rig_.cameras[0].cam_from_world * Ball(k)).z();
+        PaintOrange(0, px->x(), px->y() + 12.0, table::kBallRadius * rig_.cameras[0].fx / depth);
+      }
+      last = tracker.Process(FromSeconds(k / 120.0), views);
+    }
+    const bool whole = max_missed == 1;
+    EXPECT_EQ(last->searches[0].roi.empty(), whole) << max_missed;
+    const bool found_away = last->measurement && (last->measurement->position - away).norm() < 0.01;
+    EXPECT_EQ(found_away, whole) << max_missed;
+  }
+}
+
 TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
   // A ball-sized orange mark that both cameras see at one place (so it passes the epipolar check)
   // is a candidate at first, never a track, and dropped once it has not moved for static_frames
