@@ -174,15 +174,19 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   const Camera& camera = rig_.cameras[c];
   CameraSearch& search = *search_out;
   search.present = true;
-  if (options_.use_roi && predicted && window) {
+  // The window around the prediction: searched first, or (a coasting track's) only a bound.
+  segment::Roi stale;
+  if (options_.use_roi && predicted) {
     const auto px = camera.Project(*predicted);
     if (px) {
       const double d = ExpectedDiameterPx(camera, *predicted);
       const int size = std::clamp(static_cast<int>(std::ceil(4.0 * d + 16.0)), options_.roi_min_px,
                                   options_.roi_max_px);
-      search.roi = segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
+      (window ? search.roi : stale) =
+          segment::Roi::Around(px->x(), px->y(), size, size, camera.width, camera.height);
     }
   }
+  const std::size_t first_out = out->size();
   segment::BackgroundModel& background = backgrounds_[c];
   const bool streaks = SearchesStreaks(c);
   const bool keeps_background = options_.use_background || options_.measure_on_background ||
@@ -361,6 +365,13 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     d.observed = d.pixel;
     out->push_back(d);
   }
+  if (!window && predicted) {
+    for (std::size_t i = first_out; i < out->size(); ++i) {
+      const Eigen::Vector2d& p = (*out)[i].observed;
+      (*out)[i].outside = stale.empty() || p.x() < stale.x0 || p.x() >= stale.x1 ||
+                          p.y() < stale.y0 || p.y() >= stale.y1;
+    }
+  }
   if (keeps_background) background.Update(image, search.roi);
 }
 
@@ -505,7 +516,17 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   const TimeNs t2 = clock_ ? clock_() : 0;
   // With confirmation a track starts only from the initiator (below), never from this step.
-  if (!confirming || tracker_.tracking()) result.state = tracker_.Step(t, result.measurement);
+  // A coasting track of 2+ cameras takes nothing from outside its windows (Detection::outside):
+  // what the whole image shows goes to the initiator, which replaces the track once it confirms
+  // a flight. (One camera's views are judged again by the smoother, and its initiator confirms
+  // late: there the track takes them; docs/DECISIONS.md.)
+  const bool outside =
+      n > 1 && std::any_of(used.begin(), used.end(), [&](const std::pair<int, int>& v) {
+        return candidates[v.first][v.second].outside;
+      });
+  if (!confirming || tracker_.tracking()) {
+    result.state = tracker_.Step(t, outside ? std::optional<Measurement>() : result.measurement);
+  }
   if (confirming) {
     const bool took = result.state && result.state->measured;
     // A confirmed tracklet replaces a track that did not take this time-stamp's measurement, or

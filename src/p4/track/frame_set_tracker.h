@@ -180,6 +180,10 @@ struct Detection {
   // The region reaches the image's edge: the ball may be cut (or it is something larger coming
   // into view), so its diameter measures no depth.
   bool cut = false;
+  // Found outside the window a coasting track's prediction would have searched (roi_max_missed):
+  // with 2+ cameras for a new track only, never a measurement of the coasting one (whose grown
+  // gate would take a hand or a shirt anywhere in the image).
+  bool outside = false;
 };
 
 struct CameraSearch {

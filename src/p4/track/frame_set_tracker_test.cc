@@ -433,6 +433,27 @@ TEST_F(FrameSetTrackerTest, ACoastingTrackSearchesTheWholeImage) {
   }
 }
 
+TEST_F(FrameSetTrackerTest, ACoastingTrackTakesNothingFromOutsideItsWindows) {
+  // The track coasts for 6 sets; then a ball-sized pair that agrees across the views shows 25 cm
+  // off the predicted path, outside both windows (a hand, a shirt's edge): the whole image finds
+  // it and the initiator may start from it, but the coasting track does not take it (its grown
+  // gate would: it did before Detection::outside).
+  FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
+  const Eigen::Vector3d off = Ball(10) + Eigen::Vector3d(0.0, 0.25, 0.0);
+  std::optional<FrameSetResult> last;
+  for (int k = 0; k <= 10; ++k) {
+    const std::optional<Eigen::Vector3d> ball =
+        k < 4 ? std::optional<Eigen::Vector3d>(Ball(k))
+              : (k < 10 ? std::nullopt : std::optional<Eigen::Vector3d>(off));
+    last = tracker.Process(FromSeconds(k / 120.0), Frames(ball, k));
+  }
+  ASSERT_TRUE(last->measurement.has_value());
+  EXPECT_LT((last->measurement->position - off).norm(), 0.01);
+  ASSERT_TRUE(last->state.has_value());
+  EXPECT_FALSE(last->state->measured);
+  EXPECT_GT((last->state->position - off).norm(), 0.1);
+}
+
 TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
   // A ball-sized orange mark that both cameras see at one place (so it passes the epipolar check)
   // is a candidate at first, never a track, and dropped once it has not moved for static_frames
