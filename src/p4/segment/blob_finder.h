@@ -24,6 +24,7 @@ struct Roi {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 
   bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool Contains(double x, double y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
   // Centred window of the given size, clipped to the image (may become empty when outside).
   static Roi Around(double cx, double cy, int width, int height, int image_width, int image_height);
   Roi Clipped(int image_width, int image_height) const;

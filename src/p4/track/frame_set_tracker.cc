@@ -368,8 +368,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   if (!window && predicted) {
     for (std::size_t i = first_out; i < out->size(); ++i) {
       const Eigen::Vector2d& p = (*out)[i].observed;
-      (*out)[i].outside = stale.empty() || p.x() < stale.x0 || p.x() >= stale.x1 ||
-                          p.y() < stale.y0 || p.y() >= stale.y1;
+      (*out)[i].outside = stale.empty() || !stale.Contains(p.x(), p.y());
     }
   }
   if (keeps_background) background.Update(image, search.roi);
@@ -409,15 +408,17 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       if (frame_period_s_[c] <= 0.0 || dt < frame_period_s_[c]) frame_period_s_[c] = dt;
     }
     last_image_time_[c] = at;
+    // Seconds since the filter last took a measurement (none: no track yet).
+    const std::optional<double> since =
+        last_taken_t_ ? std::optional<double>(ToSeconds(at - *last_taken_t_)) : std::nullopt;
     // Only one frame on from a measurement: a coasting filter's path may run on through the
     // racket that hit the ball, where an arm's edge can pass for a streak.
-    const bool fresh = last_taken_t_ && ToSeconds(at - *last_taken_t_) <= 1.5 * frame_period_s_[c];
+    const bool fresh = since && *since <= 1.5 * frame_period_s_[c];
     if (predicted && fresh && SearchesStreaks(c)) {
       camera_velocity[c] = tracker_.PredictVelocity(at);
     }
-    window[c] =
-        !last_taken_t_ || frame_period_s_[c] <= 0.0 ||
-        ToSeconds(at - *last_taken_t_) <= (options_.roi_max_missed + 1.5) * frame_period_s_[c];
+    window[c] = !since || frame_period_s_[c] <= 0.0 ||
+                *since <= (options_.roi_max_missed + 1.5) * frame_period_s_[c];
   }
   const auto search = [&](int c) {
     if (images[c]) {
@@ -619,36 +620,40 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->new_track = true;
 }
 
-bool FrameSetTracker::IsStaticSpot(int camera, const Eigen::Vector2d& pixel) const {
-  for (const StaticSpot& spot : static_spots_[camera]) {
-    if ((spot.pixel - pixel).norm() <= options_.static_px) {
-      return spot.count + (spot.seen ? 0 : 1) >= options_.static_frames;
-    }
+int FrameSetTracker::SpotAt(int camera, const Eigen::Vector2d& pixel) const {
+  const auto& spots = static_spots_[camera];
+  for (int i = 0; i < static_cast<int>(spots.size()); ++i) {
+    if ((spots[i].pixel - pixel).norm() <= options_.static_px) return i;
   }
-  return false;
+  return -1;
+}
+
+bool FrameSetTracker::IsStaticSpot(int camera, const Eigen::Vector2d& pixel) const {
+  const int i = SpotAt(camera, pixel);
+  if (i < 0) return false;
+  const StaticSpot& spot = static_spots_[camera][i];
+  return spot.count + (spot.seen ? 0 : 1) >= options_.static_frames;
 }
 
 int FrameSetTracker::SpotCount(int camera, const Eigen::Vector2d& pixel) {
-  for (StaticSpot& spot : static_spots_[camera]) {
-    if ((spot.pixel - pixel).norm() <= options_.static_px) {
-      if (!spot.seen) ++spot.count;
-      spot.seen = true;
-      return spot.count;
-    }
+  const int i = SpotAt(camera, pixel);
+  if (i < 0) {
+    static_spots_[camera].push_back({pixel, 1, true});
+    return 1;
   }
-  static_spots_[camera].push_back({pixel, 1, true});
-  return 1;
+  StaticSpot& spot = static_spots_[camera][i];
+  if (!spot.seen) ++spot.count;
+  spot.seen = true;
+  return spot.count;
 }
 
 void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
   auto& spots = static_spots_[camera];
   // Only where the camera looked: a lamp outside the window is not gone.
   const bool whole = search.roi.empty() || search.fell_back;
-  const segment::Roi& roi = search.roi;
   for (StaticSpot& spot : spots) {
     const bool looked =
-        search.present && (whole || (spot.pixel.x() >= roi.x0 && spot.pixel.x() < roi.x1 &&
-                                     spot.pixel.y() >= roi.y0 && spot.pixel.y() < roi.y1));
+        search.present && (whole || search.roi.Contains(spot.pixel.x(), spot.pixel.y()));
     if (!spot.seen && looked) spot.count -= 3;  // gone for a moment: forgotten fast
     spot.seen = false;
   }

@@ -326,6 +326,8 @@ class FrameSetTracker {
     int count = 0;
     bool seen = false;
   };
+  // The index of the spot within static_px of pixel in static_spots_[camera], or -1.
+  int SpotAt(int camera, const Eigen::Vector2d& pixel) const;
   // Sets in a row with a region within static_px of pixel, this one included.
   int SpotCount(int camera, const Eigen::Vector2d& pixel);
   // True when a region at pixel would be dropped as part of the hall (SpotCount would reach
