@@ -130,20 +130,53 @@ BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const Backgr
                                             const Roi& roi_in, double sigmas, bool grow) {
   const Roi roi = roi_in.empty() ? Roi{0, 0, image.width, image.height} : roi_in;
   const int bw = bg.width() / 2, bh = bg.height() / 2;
+  MarkDiffering(image, bg, std::max(0, roi.x0 / 2 - 1), std::max(0, roi.y0 / 2 - 1),
+                std::min(bw, (roi.x1 + 1) / 2 + 1), std::min(bh, (roi.y1 + 1) / 2 + 1), sigmas,
+                grow);
+  return BlockMask{mask_.data(), bw, bh};
+}
+
+double ForegroundFinder::DifferingShare(const ImageView& image, const BackgroundModel& bg,
+                                        const Roi& roi, double sigmas) {
+  const int bw = bg.width() / 2, bh = bg.height() / 2;
+  const int bx0 = std::max(0, roi.x0 / 2), bx1 = std::min(bw, (roi.x1 + 1) / 2);
+  const int by0 = std::max(0, roi.y0 / 2), by1 = std::min(bh, (roi.y1 + 1) / 2);
+  if (bx1 <= bx0 || by1 <= by0) return 0.0;
+  const double k2 = sigmas * sigmas;
+  int differ = 0;
+  for (int by = by0; by < by1; ++by) {
+    for (int bx = bx0; bx < bx1; ++bx) differ += bg.BlockDistance2(image, bx, by) > k2;
+  }
+  return static_cast<double>(differ) / ((bx1 - bx0) * (by1 - by0));
+}
+
+BlockMask ForegroundFinder::DifferingBlocksWithin(const ImageView& image, const BackgroundModel& bg,
+                                                  std::span<const Roi> within, double sigmas,
+                                                  bool grow) {
+  const int bw = bg.width() / 2, bh = bg.height() / 2;
+  mask_.assign(static_cast<std::size_t>(bw) * bh, 1);
+  for (const Roi& roi : within) {
+    MarkDiffering(image, bg, std::max(0, roi.x0 / 2), std::max(0, roi.y0 / 2),
+                  std::min(bw, (roi.x1 + 1) / 2), std::min(bh, (roi.y1 + 1) / 2), sigmas, grow);
+  }
+  return BlockMask{mask_.data(), bw, bh};
+}
+
+void ForegroundFinder::MarkDiffering(const ImageView& image, const BackgroundModel& bg, int bx0,
+                                     int by0, int bx1, int by1, double sigmas, bool grow) {
+  const int bw = bg.width() / 2, bh = bg.height() / 2;
   if (static_cast<int>(mask_.size()) != bw * bh) mask_.assign(static_cast<std::size_t>(bw) * bh, 0);
   if (differs_.size() != mask_.size()) differs_.assign(mask_.size(), 0);
-  const int bx0 = std::max(0, roi.x0 / 2 - 1), bx1 = std::min(bw, (roi.x1 + 1) / 2 + 1);
-  const int by0 = std::max(0, roi.y0 / 2 - 1), by1 = std::min(bh, (roi.y1 + 1) / 2 + 1);
   const double k2 = sigmas * sigmas;
   for (int by = by0; by < by1; ++by) {
     for (int bx = bx0; bx < bx1; ++bx) {
       differs_[static_cast<std::size_t>(by) * bw + bx] = bg.BlockDistance2(image, bx, by) > k2;
     }
   }
+  const int reach = grow ? 1 : 0;
   for (int by = by0; by < by1; ++by) {
     for (int bx = bx0; bx < bx1; ++bx) {
       uint8_t any = 0;
-      const int reach = grow ? 1 : 0;
       for (int dy = -reach; dy <= reach && !any; ++dy) {
         for (int dx = -reach; dx <= reach; ++dx) {
           const int x = bx + dx, y = by + dy;
@@ -157,7 +190,6 @@ BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const Backgr
       mask_[static_cast<std::size_t>(by) * bw + bx] = any;
     }
   }
-  return BlockMask{mask_.data(), bw, bh};
 }
 
 bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,

@@ -15,6 +15,7 @@
 // Pixel coordinates: centres at integers. Pure: buffers are kept between calls.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "p4/core/image.h"
@@ -83,6 +84,18 @@ class ForegroundFinder {
   BlockMask DifferingBlocks(const ImageView& image, const BackgroundModel& background,
                             const Roi& roi, double sigmas, bool grow = true);
 
+  // Every block of the image, but inside the `within` windows only the blocks that differ (as
+  // DifferingBlocks): a colour region too large for the ball (a floor or banner of its colour,
+  // which the ball over it joins) is searched again on what is not the hall, the rest as it was.
+  // Valid until the next call. Precondition: the model has the image's size.
+  // The share of the blocks of `roi` that differ from the background by more than `sigmas`
+  // (0 for an empty ROI). Precondition: the model has the image's size.
+  static double DifferingShare(const ImageView& image, const BackgroundModel& background,
+                               const Roi& roi, double sigmas);
+
+  BlockMask DifferingBlocksWithin(const ImageView& image, const BackgroundModel& background,
+                                  std::span<const Roi> within, double sigmas, bool grow = true);
+
   // Measures a window (e.g. a colour region's box grown by a margin) by coverage.
   // False when nothing in it is the ball.
   bool Measure(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
@@ -94,6 +107,9 @@ class ForegroundFinder {
   std::vector<float> block_shade_, block_alpha_;
   std::vector<uint8_t> kind_, counts_;
   std::vector<uint8_t> mask_, differs_;  // DifferingBlocks: the mask and the blocks before growth
+  // Writes mask_ over the blocks [bx0, bx1) x [by0, by1).
+  void MarkDiffering(const ImageView& image, const BackgroundModel& background, int bx0, int by0,
+                     int bx1, int by1, double sigmas, bool grow);
 };
 
 }  // namespace p4::segment

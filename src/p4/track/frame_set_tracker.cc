@@ -32,6 +32,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
       !edge.IsValid(error) || !streak.IsValid(error) || !streak_finder.IsValid(error)) {
     return false;
   }
+  if (!(split_max_moving >= 0.0 && split_max_moving <= 1.0) || !(split_max_elongation >= 1.0)) {
+    if (error) *error = "split_max_moving must be in [0, 1] and split_max_elongation at least 1";
+    return false;
+  }
   if (!(streak_min_frame_s > 0.0)) {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
@@ -74,6 +78,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       streak_finders_(rig.cameras.size()),
       last_image_time_(rig.cameras.size()),
       frame_period_s_(rig.cameras.size(), 0.0),
+      ball_coloured_hall_(rig.cameras.size(), 0),
       tracker_options_(options.tracker),
       initiator_(options.initiator) {
   // New tracks come from the initiator: a refused measurement must not restart the filter.
@@ -165,6 +170,64 @@ void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Det
   }
 }
 
+std::optional<segment::CoverageRegion> FrameSetTracker::MeasureOnBackground(
+    int c, const ImageView& image, const segment::Region& r) {
+  segment::CoverageRegion m;
+  const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
+  if (foreground_finders_[c].Measure(image, backgrounds_[c], options_.ball_colour, window,
+                                     options_.foreground, &m) &&
+      std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) < 0.5 * r.diameter + 2.0) {
+    return m;
+  }
+  return std::nullopt;
+}
+
+int FrameSetTracker::SplitMerged(int c, const ImageView& image, int found, double largest,
+                                 bool measured) {
+  std::vector<segment::Region>& regions = regions_[c];
+  const segment::BackgroundModel& background = backgrounds_[c];
+  // Too large for the ball in this camera (nearer than a metre it is never seen), and mostly
+  // as the background (a moving shirt of the ball's colour would split into ball-sized pieces).
+  std::vector<segment::Roi> merged;
+  for (int k = 0; k < found; ++k) {
+    const segment::Region& r = regions[k];
+    const segment::Roi box{r.x0, r.y0, r.x1, r.y1};
+    if ((r.area > options_.max_area_px || r.minor_diameter > largest) &&
+        segment::ForegroundFinder::DifferingShare(image, background, box, options_.mask_sigmas) <=
+            options_.split_max_moving) {
+      merged.push_back(box);
+    }
+  }
+  if (merged.empty()) return -1;
+  const segment::BlockMask blocks = foreground_finders_[c].DifferingBlocksWithin(
+      image, background, merged, options_.mask_sigmas, options_.mask_grow);
+  // The floor's pieces that differ (shadows, feet) must not crowd the ball out.
+  segment::SegmentOptions more = options_.segment;
+  more.max_regions = 4 * more.max_regions;
+  const int n = finders_[c].Find(image, lut_, {}, more, &regions, &blocks);
+  // Outside the boxes the regions are those found before. Inside, a piece is the ball only if it
+  // differs from the background as the ball would (measured by coverage) and is round (an arm or
+  // a shirt's edge that moved is long).
+  std::vector<std::optional<segment::CoverageRegion>>& coverage = measured_[c];
+  coverage.clear();
+  int kept = 0;
+  for (int k = 0; k < n; ++k) {
+    const segment::Region& r = regions[k];
+    const bool within = std::any_of(merged.begin(), merged.end(),
+                                    [&](const auto& m) { return m.Contains(r.cx, r.cy); });
+    std::optional<segment::CoverageRegion> m;
+    if (within || measured) m = MeasureOnBackground(c, image, r);
+    if (within && (!m || m->region.major_diameter >
+                             options_.split_max_elongation * m->region.minor_diameter)) {
+      continue;
+    }
+    regions[kept++] = r;
+    coverage.push_back(m);
+  }
+  regions.resize(kept);
+  return kept;
+}
+
 void FrameSetTracker::SearchCamera(int c, const ImageView& image,
                                    const std::optional<Eigen::Vector3d>& predicted,
                                    const std::optional<Eigen::Vector3d>& velocity,
@@ -189,47 +252,47 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   const std::size_t first_out = out->size();
   segment::BackgroundModel& background = backgrounds_[c];
   const bool streaks = SearchesStreaks(c);
-  const bool keeps_background = options_.use_background || options_.measure_on_background ||
-                                options_.mask_with_background || streaks;
-  if (keeps_background &&
-      (background.width() != (image.width & ~1) || background.height() != (image.height & ~1))) {
-    background = segment::BackgroundModel(image.width, image.height, options_.background);
-  }
+  // split_merged: in cameras whose colour tables have found a region too large for the ball (a
+  // floor or banner of its colour), whose frame period is known and that look for no streaks (a
+  // ball blurred over a long exposure differs from the background by less than its noise, and
+  // would be cut out with the floor). Only they pay for the background model it needs.
+  const auto splits = [&] {
+    return options_.split_merged && ball_coloured_hall_[c] && frame_period_s_[c] > 0.0 && !streaks;
+  };
+  const auto keeps_background = [&] {
+    return options_.use_background || options_.measure_on_background ||
+           options_.mask_with_background || splits() || streaks;
+  };
+  const auto sized_background = [&] {
+    if (background.width() != (image.width & ~1) || background.height() != (image.height & ~1)) {
+      background = segment::BackgroundModel(image.width, image.height, options_.background);
+    }
+  };
+  if (keeps_background()) sized_background();
   const bool on_background = options_.use_background && background.ready();
   // The colour tables find; the background only measures (centre and size by coverage).
-  const bool measure_only =
+  bool measure_only =
       !options_.use_background && options_.measure_on_background && background.ready();
   segment::ForegroundFinder& foreground = foreground_finders_[c];
   std::vector<segment::CoverageRegion>& coverage = coverage_[c];
   coverage.clear();
-  // A colour region measured by coverage on the background, if it differs from it there.
-  const auto measure = [&](const segment::Region& r) -> std::optional<segment::CoverageRegion> {
-    segment::CoverageRegion m;
-    const segment::Roi window{r.x0 - 3, r.y0 - 3, r.x1 + 3, r.y1 + 3};
-    if (foreground.Measure(image, background, options_.ball_colour, window, options_.foreground,
-                           &m) &&
-        std::hypot(m.region.cx - r.cx, m.region.cy - r.cy) < 0.5 * r.diameter + 2.0) {
-      return m;
-    }
-    return std::nullopt;
-  };
   const bool masked = options_.mask_with_background && background.ready();
   // The colour tables first (paper §3.4): in the predicted window, else the whole image. On a
   // known background a colour region must also differ from it (lamps, banners, lines, a ball
   // lying on the floor do not) and is measured by its coverage; what differs from the background
   // with the ball's colour mixed in (a blurred streak, a ball of 3 px, a shaded or white ball)
   // joins them (`both` below).
-  const auto colour_search = [&](const segment::Roi& roi) {
+  const auto colour_search = [&](const segment::Roi& roi, bool mask) {
     segment::BlockMask blocks;
-    if (masked) {
+    if (mask) {
       blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas,
                                           options_.mask_grow);
     }
     const int n =
-        finders_[c].Find(image, lut_, roi, options_.segment, &regions, masked ? &blocks : nullptr);
+        finders_[c].Find(image, lut_, roi, options_.segment, &regions, mask ? &blocks : nullptr);
     if (!measure_only && !on_background) return n;
     measured_[c].assign(n, std::nullopt);
-    for (int k = 0; k < n; ++k) measured_[c][k] = measure(regions[k]);
+    for (int k = 0; k < n; ++k) measured_[c][k] = MeasureOnBackground(c, image, regions[k]);
     if (!on_background) return n;
     coverage.clear();
     for (const auto& m : measured_[c]) {
@@ -247,8 +310,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // On a known background both detectors look: the colour tables' regions that differ from it,
   // then what differs with the ball's colour mixed in and is not one of those (a white hall has
   // white regions everywhere; the ball must not wait for them to go).
-  const auto both = [&](const segment::Roi& roi) {
-    const int from_tables = colour_search(roi);
+  const auto both = [&](const segment::Roi& roi, bool mask) {
+    const int from_tables = colour_search(roi, mask);
     if (!on_background) return from_tables;
     std::vector<segment::CoverageRegion> merged(coverage.begin(), coverage.begin() + from_tables);
     const int more = background_search(roi);
@@ -264,9 +327,15 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     coverage = std::move(merged);
     return static_cast<int>(coverage.size());
   };
+  // The widest the ball can be in this camera (no nearer than a metre; motion blur lengthens it,
+  // never widens it).
+  const double largest = 2.0 * table::kBallRadius * camera.fx;
   const bool from_colour = !on_background;
+  // Regions found again on what differs from the background (split_merged): by coverage.
+  const bool splitting = splits() && from_colour && !masked;
+  bool split = false;
   const auto by_coverage = [&](int k) {
-    return !from_colour || (measure_only && measured_[c][k].has_value());
+    return !from_colour || ((measure_only || split) && measured_[c][k].has_value());
   };
   const auto region_of = [&](int k) -> const segment::Region& {
     return !from_colour ? coverage[k].region
@@ -274,21 +343,29 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   };
   int found = 0;
   if (!search.roi.empty()) {
-    found = both(search.roi);
+    found = both(search.roi, masked);
     // The window holds the ball only if a region there is the ball's size at the predicted point
     // (after a hit the filter still sends the ball on, into the player's arm): else the whole
     // image is searched. A region that is part of the hall (a second ball lying on the floor,
     // dropped below) does not hold it.
-    if (options_.roi_needs_size) {
-      const double expected = ExpectedDiameterPx(camera, *predicted);
-      bool sized = false;
-      for (int k = 0; k < found && !sized; ++k) {
+    const double expected = ExpectedDiameterPx(camera, *predicted);
+    const auto holds_ball = [&] {
+      for (int k = 0; k < found; ++k) {
         if (IsStaticSpot(c, {region_of(k).cx, region_of(k).cy})) continue;
         const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
-        sized = ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio;
+        if (ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio) return true;
       }
-      if (!sized) found = 0;
+      return false;
+    };
+    bool sized = holds_ball();
+    // Nothing of its size: the ball may have merged with a floor or banner of its colour; what
+    // differs from the background there is not the floor.
+    if (!sized && splitting && background.ready()) {
+      split = measure_only = true;  // by coverage: the mask's blocks take some floor too
+      found = both(search.roi, true);
+      sized = holds_ball();
     }
+    if (options_.roi_needs_size && !sized) found = 0;
   }
   // Nothing of the ball's size where it is predicted: a faint streak along its predicted path?
   bool streak_seen = false;
@@ -300,7 +377,21 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
-    found = both({});
+    found = both({}, masked);
+    if (from_colour && !masked) {
+      for (int k = 0; k < found && !ball_coloured_hall_[c]; ++k) {
+        ball_coloured_hall_[c] =
+            regions[k].area > options_.max_area_px || regions[k].minor_diameter > largest;
+      }
+    }
+    // A floor, wall or banner of the ball's colour, the ball maybe joined to it.
+    if (splitting && background.ready()) {
+      const int n = SplitMerged(c, image, found, largest, measure_only);
+      if (n >= 0) {
+        found = n;
+        split = true;
+      }
+    }
   }
   // No track, or nothing of it where predicted: the ball may be nowhere sharp, only a faint
   // streak somewhere.
@@ -316,7 +407,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   for (int k = 0; k < found; ++k) {
     const segment::Region& r = region_of(k);
     // A ball, even blurred, is a compact blob: not a wall, not a line.
-    if (r.area > options_.max_area_px ||
+    if (r.area > options_.max_area_px || r.minor_diameter > largest ||
         r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter)) {
       continue;
     }
@@ -371,7 +462,10 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       (*out)[i].outside = stale.empty() || !stale.Contains(p.x(), p.y());
     }
   }
-  if (keeps_background) background.Update(image, search.roi);
+  if (keeps_background()) {
+    sized_background();
+    background.Update(image, search.roi);
+  }
 }
 
 FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<ImageView>> images,

@@ -37,7 +37,9 @@ namespace p4::track {
 struct FrameSetOptions {
   segment::SegmentOptions segment;  // mask is set from the classes ("ball*")
   int candidates_per_camera = 8;
-  int max_area_px = 4000;       // larger regions are not the ball (walls, shirts, lines)
+  // Larger regions are not the ball (walls, shirts, lines), nor those wider than the ball a metre
+  // from the camera (motion blur lengthens it, never widens it).
+  int max_area_px = 4000;
   double max_elongation = 8.0;  // major / minor diameter: blur stretches a ball, a line more
   // A region that stays within static_px of the same place for static_frames frame sets is part
   // of the hall (a lamp, a white mark), not the ball in play.
@@ -96,6 +98,25 @@ struct FrameSetOptions {
   // With the colour tables: only blocks that differ from the background (by mask_sigmas, grown
   // by a block) can be the ball: a ball-coloured floor, banner or lamp never merges with it.
   bool mask_with_background = false;
+  // With the colour tables alone: a ball over a floor, wall or banner of its colour merges with
+  // it into one region too large for the ball. When a fresh window (the track measured in the
+  // camera's last frame) holds no region of the ball's size, it is searched again on the blocks
+  // that differ from the background only (as mask_with_background, in the window alone); in a
+  // whole-image search, so are the boxes of the regions too large for a ball (wider than one a
+  // metre from the camera, or over max_area_px). Regions found so are measured by coverage (the
+  // mask's blocks take some of the floor). A camera keeps the background model this needs from
+  // the frame whose whole image first shows such a region (no cost in a hall with none). Not in
+  // cameras that look for streaks (a ball blurred over a long exposure differs from the
+  // background by less than its noise).
+  bool split_merged = true;
+  // ...but only regions mostly of the hall: at most this share of their box's blocks differ from
+  // the background (a floor with a player on it; a ball-coloured shirt that moves differs more,
+  // and its pieces would pass for balls).
+  double split_max_moving = 0.2;
+  // ...and of what it finds there, only round pieces (major <= this times minor): an arm or a
+  // shirt's edge that moved over a hall of the ball's colour is longer (and a ball blurred into
+  // a streak over such a floor is lost).
+  double split_max_elongation = 2.0;
   double mask_sigmas = 3.0;
   bool mask_grow = true;  // the mask grown by a block (the tables cut a ball's faint edge)
   // A faint blur streak looked for along the path the filter predicts (segment/streak_search.h)
@@ -267,6 +288,18 @@ class FrameSetTracker {
   // predicted), each measured by the streak search; their diameters from their shares about
   // the ball's size over the table.
   void StreakViews(int c, const ImageView& image, std::vector<Detection>* out);
+  // A colour region of camera c measured by coverage on its background, if it differs from it
+  // there (centre within half the region's diameter and 2 px of the region's).
+  std::optional<segment::CoverageRegion> MeasureOnBackground(int c, const ImageView& image,
+                                                             const segment::Region& region);
+  // split_merged over the whole image: the boxes of camera c's first `found` colour regions
+  // (regions_[c]) that are too large for a ball wider than `largest` px and mostly of the hall
+  // are searched again on the blocks that differ from the background (the rest of the image as
+  // before); of what is found inside them only the pieces measured by coverage and round stay.
+  // regions_[c] and measured_[c] become the new regions and their coverage (outside the boxes
+  // only when `measured`). Returns their number, or -1 when no region was too large (nothing
+  // changed).
+  int SplitMerged(int c, const ImageView& image, int found, double largest, bool measured);
   // Moves each view to the set's time t by its own image motion: the velocity from the nearest
   // view of the same camera's last image (Process). Remembers this set's views for the next.
   void MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& image_time,
@@ -355,6 +388,8 @@ class FrameSetTracker {
   // frame period; 0 until two images).
   std::vector<std::optional<TimeNs>> last_image_time_;
   std::vector<double> frame_period_s_;
+  // Per camera: its colour tables found a region too large for the ball (split_merged).
+  std::vector<char> ball_coloured_hall_;
   std::unique_ptr<CameraPool> pool_;
   TrackerOptions tracker_options_;  // the filter's, without restarts when tracks are confirmed
   BallTracker tracker_;

@@ -14,14 +14,14 @@
 namespace p4::track {
 namespace {
 
-class FrameSetTrackerTest : public ::testing::Test {
+// Two club cameras (640x360) rendering a scene in memory.
+class RenderedRigTest : public ::testing::Test {
  protected:
-  FrameSetTrackerTest() : rig_(sim::ClubRig(2, 640, 360, false)) {
-    sim::SceneOptions scene;
+  explicit RenderedRigTest(const sim::SceneOptions& scene = {})
+      : rig_(sim::ClubRig(2, 640, 360, false)), frames_(2) {
     sim::RenderOptions render;
     render.static_supersampling = 1;
     for (const Camera& c : rig_.cameras) renderers_.emplace_back(c, scene, render);
-    frames_.resize(2);
   }
 
   // Renders the ball at p (or no ball) in both cameras and returns views of the frames.
@@ -37,6 +37,13 @@ class FrameSetTrackerTest : public ::testing::Test {
     return views;
   }
 
+  Rig rig_;
+  std::vector<sim::CameraRenderer> renderers_;
+  std::vector<I420Image> frames_;
+};
+
+class FrameSetTrackerTest : public RenderedRigTest {
+ protected:
   // Renders each camera's ball at its own place (cameras out of step).
   std::vector<std::optional<ImageView>> FramesAt(const std::vector<Eigen::Vector3d>& p,
                                                  uint64_t k) {
@@ -62,10 +69,6 @@ class FrameSetTrackerTest : public ::testing::Test {
       }
     }
   }
-
-  Rig rig_;
-  std::vector<sim::CameraRenderer> renderers_;
-  std::vector<I420Image> frames_;
 };
 
 Eigen::Vector3d Ball(int k) { return {-1.0 + 0.05 * k, 0.2, 0.3 + 0.01 * k - 0.0004 * k * k}; }
@@ -215,6 +218,7 @@ TEST_F(FrameSetTrackerTest, AFaintStreakContinuesATrackAtWebcamRates) {
   };
   const auto exposed = [&](double t, double exposure) {
     std::vector<Eigen::Vector3d> samples;
+    samples.reserve(48);
     for (int s = 0; s < 48; ++s) samples.push_back(ball_at(t + exposure * ((s + 0.5) / 48 - 0.5)));
     return samples;
   };
@@ -398,6 +402,99 @@ TEST_F(FrameSetTrackerTest, ABallLyingOnTheFloorDoesNotHoldTheWindow) {
       EXPECT_TRUE(result.searches[1].fell_back);
       ASSERT_TRUE(result.measurement.has_value());
       EXPECT_LT((result.measurement->position - away).norm(), 0.01);
+    }
+  }
+}
+
+// The club cameras; the floor beside the table is the ball's orange (players out of view).
+sim::SceneOptions OrangeFloor() {
+  sim::SceneOptions scene;
+  scene.players = false;
+  scene.look.floor = {0.85f, 0.36f, 0.06f};
+  return scene;
+}
+
+class OrangeFloorTest : public RenderedRigTest {
+ protected:
+  OrangeFloorTest() : RenderedRigTest(OrangeFloor()) {}
+
+  // A ball beside the table, over the floor in both views.
+  static Eigen::Vector3d Ball(int k) {
+    return {-0.6 + 0.05 * k, -1.25, 0.1 + 0.01 * k - 0.0004 * k * k};
+  }
+};
+
+TEST_F(OrangeFloorTest, ABallOverAFloorOfItsColourIsFoundOnTheBackground) {
+  // The colour tables join the ball to the floor in one region far too large for a ball. Split
+  // on what differs from the background (the floor stays, the ball moves), the ball is found and
+  // triangulated in every set, whole image and window alike; without the split it is never
+  // measured.
+  for (int k = 0; k < 10; ++k) {
+    for (const Camera& camera : rig_.cameras) {
+      const auto px = camera.Project(Ball(k));
+      ASSERT_TRUE(px && px->x() > 20 && px->x() < 620 && px->y() > 20 && px->y() < 340);
+    }
+  }
+  for (const bool split : {true, false}) {
+    FrameSetOptions options;
+    options.split_merged = split;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    int measured = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 22; ++k) {
+      const std::optional<Eigen::Vector3d> ball =
+          k < 12 ? std::nullopt : std::optional<Eigen::Vector3d>(Ball(k - 12));
+      const auto result = tracker.Process(FromSeconds(k / 120.0), Frames(ball, k));
+      if (!ball || !result.measurement) continue;
+      ++measured;
+      worst = std::max(worst, (result.measurement->position - *ball).norm());
+    }
+    if (split) {
+      // Within 15 mm: the ball is 3-6 px and its shaded bottom is the floor's colour (the centre
+      // leans a pixel up in both views).
+      EXPECT_EQ(measured, 10);
+      EXPECT_LT(worst, 0.015);
+    } else {
+      EXPECT_EQ(measured, 0);
+    }
+  }
+}
+
+TEST_F(OrangeFloorTest, AnArmMovingOverAFloorOfTheBallsColourIsNoCandidate) {
+  // No ball; an arm of the ball's colour (40 x 6 px) sweeps over the floor in camera 0. The
+  // split finds it on the background, but long: not a ball. Taking every piece
+  // (split_max_elongation 100) makes it a candidate.
+  for (const double elongation : {2.0, 100.0}) {
+    FrameSetOptions options;
+    options.split_max_elongation = elongation;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    int near_arm = 0;
+    for (int k = 0; k < 20; ++k) {
+      auto views = Frames(std::nullopt, k);
+      const auto at = rig_.cameras[0].Project(Ball(k < 12 ? 0 : k - 12));
+      ASSERT_TRUE(at.has_value());
+      const int x0 = static_cast<int>(at->x()) - 20, y0 = static_cast<int>(at->y());
+      if (k >= 12) {
+        I420Image& f = frames_[0];
+        for (int y = y0; y < y0 + 6; ++y) {
+          for (int x = x0; x < x0 + 40; ++x) {
+            f.y()[y * f.width() + x] = 150;
+            f.u()[(y / 2) * f.chroma_width() + x / 2] = 65;
+            f.v()[(y / 2) * f.chroma_width() + x / 2] = 199;
+          }
+        }
+      }
+      const auto result = tracker.Process(FromSeconds(k / 120.0), views);
+      if (k < 12) continue;
+      for (const Detection& d : result.detections) {
+        near_arm += d.camera == 0 && std::abs(d.pixel.x() - (x0 + 20)) < 24 &&
+                    std::abs(d.pixel.y() - (y0 + 3)) < 8;
+      }
+    }
+    if (elongation == 2.0) {
+      EXPECT_EQ(near_arm, 0);
+    } else {
+      EXPECT_GE(near_arm, 6);
     }
   }
 }
