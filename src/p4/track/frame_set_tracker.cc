@@ -271,8 +271,9 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   if (keeps_background()) sized_background();
   const bool on_background = options_.use_background && background.ready();
   // The colour tables find; the background only measures (centre and size by coverage).
-  bool measure_only =
+  const bool measure_all =
       !options_.use_background && options_.measure_on_background && background.ready();
+  bool measure_only = measure_all;
   segment::ForegroundFinder& foreground = foreground_finders_[c];
   std::vector<segment::CoverageRegion>& coverage = coverage_[c];
   coverage.clear();
@@ -377,6 +378,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   }
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
+    split = false;  // a window searched again on the background: the whole image as usual
+    measure_only = measure_all;
     found = both({}, masked);
     if (from_colour && !masked) {
       for (int k = 0; k < found && !ball_coloured_hall_[c]; ++k) {
@@ -386,7 +389,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     // A floor, wall or banner of the ball's colour, the ball maybe joined to it.
     if (splitting && background.ready()) {
-      const int n = SplitMerged(c, image, found, largest, measure_only);
+      const int n = SplitMerged(c, image, found, largest, measure_all);
       if (n >= 0) {
         found = n;
         split = true;
