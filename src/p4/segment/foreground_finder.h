@@ -84,15 +84,15 @@ class ForegroundFinder {
   BlockMask DifferingBlocks(const ImageView& image, const BackgroundModel& background,
                             const Roi& roi, double sigmas, bool grow = true);
 
-  // Every block of the image, but inside the `within` windows only the blocks that differ (as
-  // DifferingBlocks): a colour region too large for the ball (a floor or banner of its colour,
-  // which the ball over it joins) is searched again on what is not the hall, the rest as it was.
-  // Valid until the next call. Precondition: the model has the image's size.
   // The share of the blocks of `roi` that differ from the background by more than `sigmas`
   // (0 for an empty ROI). Precondition: the model has the image's size.
   static double DifferingShare(const ImageView& image, const BackgroundModel& background,
                                const Roi& roi, double sigmas);
 
+  // Every block of the image, but inside the `within` windows only the blocks that differ (as
+  // DifferingBlocks): a colour region too large for the ball (a floor or banner of its colour,
+  // which the ball over it joins) is searched again on what is not the hall, the rest as it was.
+  // Valid until the next call. Precondition: the model has the image's size.
   BlockMask DifferingBlocksWithin(const ImageView& image, const BackgroundModel& background,
                                   std::span<const Roi> within, double sigmas, bool grow = true);
 

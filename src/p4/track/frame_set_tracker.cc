@@ -182,6 +182,10 @@ std::optional<segment::CoverageRegion> FrameSetTracker::MeasureOnBackground(
   return std::nullopt;
 }
 
+bool FrameSetTracker::TooLargeForBall(const segment::Region& r, double largest) const {
+  return r.area > options_.max_area_px || r.minor_diameter > largest;
+}
+
 int FrameSetTracker::SplitMerged(int c, const ImageView& image, int found, double largest,
                                  bool measured) {
   std::vector<segment::Region>& regions = regions_[c];
@@ -192,7 +196,7 @@ int FrameSetTracker::SplitMerged(int c, const ImageView& image, int found, doubl
   for (int k = 0; k < found; ++k) {
     const segment::Region& r = regions[k];
     const segment::Roi box{r.x0, r.y0, r.x1, r.y1};
-    if ((r.area > options_.max_area_px || r.minor_diameter > largest) &&
+    if (TooLargeForBall(r, largest) &&
         segment::ForegroundFinder::DifferingShare(image, background, box, options_.mask_sigmas) <=
             options_.split_max_moving) {
       merged.push_back(box);
@@ -271,9 +275,10 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   if (keeps_background()) sized_background();
   const bool on_background = options_.use_background && background.ready();
   // The colour tables find; the background only measures (centre and size by coverage).
-  const bool measure_all =
+  const bool measure_only =
       !options_.use_background && options_.measure_on_background && background.ready();
-  bool measure_only = measure_all;
+  // Regions found again on what differs from the background (split_merged): by coverage.
+  bool split = false;
   segment::ForegroundFinder& foreground = foreground_finders_[c];
   std::vector<segment::CoverageRegion>& coverage = coverage_[c];
   coverage.clear();
@@ -291,7 +296,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     }
     const int n =
         finders_[c].Find(image, lut_, roi, options_.segment, &regions, mask ? &blocks : nullptr);
-    if (!measure_only && !on_background) return n;
+    if (!measure_only && !split && !on_background) return n;
     measured_[c].assign(n, std::nullopt);
     for (int k = 0; k < n; ++k) measured_[c][k] = MeasureOnBackground(c, image, regions[k]);
     if (!on_background) return n;
@@ -332,9 +337,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // never widens it).
   const double largest = 2.0 * table::kBallRadius * camera.fx;
   const bool from_colour = !on_background;
-  // Regions found again on what differs from the background (split_merged): by coverage.
   const bool splitting = splits() && from_colour && !masked;
-  bool split = false;
   const auto by_coverage = [&](int k) {
     return !from_colour || ((measure_only || split) && measured_[c][k].has_value());
   };
@@ -362,7 +365,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     // Nothing of its size: the ball may have merged with a floor or banner of its colour; what
     // differs from the background there is not the floor.
     if (!sized && splitting && background.ready()) {
-      split = measure_only = true;  // by coverage: the mask's blocks take some floor too
+      split = true;  // by coverage: the mask's blocks take some floor too
       found = both(search.roi, true);
       sized = holds_ball();
     }
@@ -379,17 +382,15 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   if (found == 0) {
     search.fell_back = !search.roi.empty() || (options_.use_roi && predicted.has_value());
     split = false;  // a window searched again on the background: the whole image as usual
-    measure_only = measure_all;
     found = both({}, masked);
     if (from_colour && !masked) {
       for (int k = 0; k < found && !ball_coloured_hall_[c]; ++k) {
-        ball_coloured_hall_[c] =
-            regions[k].area > options_.max_area_px || regions[k].minor_diameter > largest;
+        ball_coloured_hall_[c] = TooLargeForBall(regions[k], largest);
       }
     }
     // A floor, wall or banner of the ball's colour, the ball maybe joined to it.
     if (splitting && background.ready()) {
-      const int n = SplitMerged(c, image, found, largest, measure_all);
+      const int n = SplitMerged(c, image, found, largest, measure_only);
       if (n >= 0) {
         found = n;
         split = true;
@@ -410,7 +411,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   for (int k = 0; k < found; ++k) {
     const segment::Region& r = region_of(k);
     // A ball, even blurred, is a compact blob: not a wall, not a line.
-    if (r.area > options_.max_area_px || r.minor_diameter > largest ||
+    if (TooLargeForBall(r, largest) ||
         r.major_diameter > options_.max_elongation * std::max(1.0, r.minor_diameter)) {
       continue;
     }

@@ -292,6 +292,9 @@ class FrameSetTracker {
   // there (centre within half the region's diameter and 2 px of the region's).
   std::optional<segment::CoverageRegion> MeasureOnBackground(int c, const ImageView& image,
                                                              const segment::Region& region);
+  // A region that cannot be the ball alone: over max_area_px, or wider than `largest` px (the
+  // ball a metre from the camera; motion blur lengthens it, never widens it).
+  bool TooLargeForBall(const segment::Region& region, double largest) const;
   // split_merged over the whole image: the boxes of camera c's first `found` colour regions
   // (regions_[c]) that are too large for a ball wider than `largest` px and mostly of the hall
   // are searched again on the blocks that differ from the background (the rest of the image as
