@@ -431,6 +431,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     d.cut = r.touches_border;
     if (by_coverage(k)) {
       d.diameter_px = r.diameter;  // the coverage sum: the disc's area, blur or not
+      d.by_coverage = true;
     } else if (options_.refine) {
       // The diameter only: the luma-weighted centroid leans to the lit side of the ball,
       // differently in each camera, which the epipolar check does not forgive.
@@ -533,7 +534,10 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   MoveToSetTime(t, image_time, result.searches, &candidates);
   const TimeNs t1 = clock_ ? clock_() : 0;
   std::vector<std::pair<int, int>> used;
-  const std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
+  std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
+  if (options_.whole_fragments && WholeFragments(hypotheses, images, &candidates)) {
+    hypotheses = Hypotheses(candidates);
+  }
   const bool confirming = options_.confirm_tracks;
   // One camera: each candidate placed by its diameter (nullopt: outside the hall).
   std::vector<std::optional<Measurement>> placed;
@@ -837,6 +841,43 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
     return score(a) < score(b);
   });
   return out;
+}
+
+bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
+                                     std::span<const std::optional<ImageView>> images,
+                                     std::vector<std::vector<Detection>>* candidates) const {
+  bool changed = false;
+  std::vector<std::pair<int, int>> tried;
+  for (const Hypothesis& h : hypotheses) {
+    if (!h.fragment) continue;
+    for (const auto& [c, k] : h.members) {
+      Detection& d = (*candidates)[c][k];
+      const double expected = ExpectedDiameterPx(rig_.cameras[c], h.estimate.point);
+      if (c >= static_cast<int>(images.size()) || !images[c] || d.streak || d.by_coverage ||
+          d.cut || expected <= 0.0 || d.diameter_px >= options_.min_size_ratio * expected ||
+          std::find(tried.begin(), tried.end(), std::make_pair(c, k)) != tried.end()) {
+        continue;
+      }
+      tried.emplace_back(c, k);
+      const auto e = segment::MeasureEdgeCentre(*images[c], d.observed.x(), d.observed.y(),
+                                                0.5 * expected, options_.edge);
+      if (!e || e->minor_diameter <= 0.0 ||
+          e->major_diameter > options_.edge_diameter_max_elongation * e->minor_diameter ||
+          std::hypot(e->cx - d.observed.x(), e->cy - d.observed.y()) > 0.5 * expected) {
+        continue;
+      }
+      // The ball's own size, not another fragment (a half-hidden ball is no reason here).
+      const double ratio = e->minor_diameter / expected;
+      if (ratio < 1.0 / options_.max_size_ratio || ratio > options_.max_size_ratio) continue;
+      // The view keeps its shift to the set's time (MoveToSetTime).
+      const Eigen::Vector2d shift = d.pixel - d.observed;
+      d.observed = {e->cx, e->cy};
+      d.pixel = d.observed + shift;
+      d.diameter_px = e->minor_diameter;
+      changed = true;
+    }
+  }
+  return changed;
 }
 
 const FrameSetTracker::Hypothesis* FrameSetTracker::Pick(

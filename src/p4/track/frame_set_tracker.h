@@ -56,6 +56,9 @@ struct FrameSetOptions {
   // fragment_max_distance of the prediction.
   double min_fragment_ratio = 0.2;
   double fragment_max_distance = 0.1;  // m
+  // A fragment's views are measured again by the ball's edge at the expected size
+  // (FrameSetTracker::WholeFragments); those that hold are whole views.
+  bool whole_fragments = true;
   // Where a ball can be: |x|, |y| and the height above the table top (m); the floor below.
   Eigen::Vector3d hall_half_size{8.0, 6.0, 5.0};
   bool use_roi = true;
@@ -201,6 +204,8 @@ struct Detection {
   // The region reaches the image's edge: the ball may be cut (or it is something larger coming
   // into view), so its diameter measures no depth.
   bool cut = false;
+  // Its diameter is the coverage sum on the background: the whole disc, its shaded part too.
+  bool by_coverage = false;
   // Found outside the window a coasting track's prediction would have searched (roi_max_missed):
   // with 2+ cameras for a new track only, never a measurement of the coasting one (whose grown
   // gate would take a hand or a shirt anywhere in the image).
@@ -317,6 +322,15 @@ class FrameSetTracker {
   };
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
+  // A fragment's small views measured again by the ball's edge at the size the hypothesis
+  // expects (the colour tables took the lit part; the edge shows the whole ball against the
+  // hall): a view whose edge fit holds at that size (within max_size_ratio either way) takes its
+  // centre and diameter. Not views measured by coverage (their size counts the shaded part),
+  // streaks or views cut by the image's edge. Returns whether any view changed (the hypotheses
+  // are then stale).
+  bool WholeFragments(const std::vector<Hypothesis>& hypotheses,
+                      std::span<const std::optional<ImageView>> images,
+                      std::vector<std::vector<Detection>>* candidates) const;
   // The hypothesis nearest the prediction among those of most views (the best without one).
   // Fragments only near the prediction.
   const Hypothesis* Pick(const std::vector<Hypothesis>& hypotheses,

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "p4/core/table.h"
+#include "p4/geometry/sphere_depth.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/renderer.h"
 #include "p4/track/result_hold.h"
@@ -14,11 +16,11 @@
 namespace p4::track {
 namespace {
 
-// Two club cameras (640x360) rendering a scene in memory.
+// Two club cameras (640x360 unless said) rendering a scene in memory.
 class RenderedRigTest : public ::testing::Test {
  protected:
-  explicit RenderedRigTest(const sim::SceneOptions& scene = {})
-      : rig_(sim::ClubRig(2, 640, 360, false)), frames_(2) {
+  explicit RenderedRigTest(const sim::SceneOptions& scene = {}, int width = 640, int height = 360)
+      : rig_(sim::ClubRig(2, width, height, false)), frames_(2) {
     sim::RenderOptions render;
     render.static_supersampling = 1;
     for (const Camera& c : rig_.cameras) renderers_.emplace_back(c, scene, render);
@@ -44,6 +46,9 @@ class RenderedRigTest : public ::testing::Test {
 
 class FrameSetTrackerTest : public RenderedRigTest {
  protected:
+  FrameSetTrackerTest() = default;
+  FrameSetTrackerTest(int width, int height) : RenderedRigTest({}, width, height) {}
+
   // Renders each camera's ball at its own place (cameras out of step).
   std::vector<std::optional<ImageView>> FramesAt(const std::vector<Eigen::Vector3d>& p,
                                                  uint64_t k) {
@@ -57,18 +62,20 @@ class FrameSetTrackerTest : public RenderedRigTest {
     return views;
   }
 
-  // Paints an orange disc into camera c's frame (a second orange object).
-  void PaintOrange(int c, double cx, double cy, double r) {
+  // Paints a disc of one YUV colour into camera c's frame.
+  void PaintDisc(int c, double cx, double cy, double r, uint8_t y, uint8_t u, uint8_t v) {
     I420Image& f = frames_[c];
-    for (int y = 0; y < f.height(); ++y) {
+    for (int row = 0; row < f.height(); ++row) {
       for (int x = 0; x < f.width(); ++x) {
-        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r) continue;
-        f.y()[y * f.width() + x] = 137;
-        f.u()[(y / 2) * f.chroma_width() + x / 2] = 65;
-        f.v()[(y / 2) * f.chroma_width() + x / 2] = 199;
+        if ((x - cx) * (x - cx) + (row - cy) * (row - cy) > r * r) continue;
+        f.y()[row * f.width() + x] = y;
+        f.u()[(row / 2) * f.chroma_width() + x / 2] = u;
+        f.v()[(row / 2) * f.chroma_width() + x / 2] = v;
       }
     }
   }
+  // Paints an orange disc into camera c's frame (a second orange object).
+  void PaintOrange(int c, double cx, double cy, double r) { PaintDisc(c, cx, cy, r, 137, 65, 199); }
 };
 
 Eigen::Vector3d Ball(int k) { return {-1.0 + 0.05 * k, 0.2, 0.3 + 0.01 * k - 0.0004 * k * k}; }
@@ -611,6 +618,48 @@ TEST_F(FrameSetTrackerTest, AFragmentOfTheBallContinuesATrackButNeverStartsOne) 
     }
   }
   EXPECT_EQ(measured, 6);
+}
+
+// Cameras of 1280x720: the ball ~10 px wide, its edge seen by many rays.
+class SharpRigTest : public FrameSetTrackerTest {
+ protected:
+  SharpRigTest() : FrameSetTrackerTest(1280, 720) {}
+};
+
+TEST_F(SharpRigTest, AShadedBallWhoseLitPartAloneIsInTheTablesIsMeasuredWhole) {
+  // Each view: the ball's whole disc in a shaded orange the colour tables do not take (V 160,
+  // below every box), its lit cap at the top (a quarter of the diameter) in the tables' orange.
+  const auto shaded_frames = [&](int k) {
+    auto views = Frames(std::nullopt, k);
+    for (int c = 0; c < 2; ++c) {
+      const Camera& camera = rig_.cameras[c];
+      const auto px = camera.Project(Ball(k));
+      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+      PaintDisc(c, px->x(), px->y(), r, 120, 75, 160);
+      PaintOrange(c, px->x(), px->y() - 0.6 * r, 0.25 * r);
+    }
+    return views;
+  };
+  for (const bool whole : {true, false}) {
+    FrameSetOptions options;
+    options.whole_fragments = whole;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    int measured = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 16; ++k) {
+      const auto r = tracker.Process(FromSeconds(k / 120.0), shaded_frames(k));
+      if (r.state && r.state->measured) {
+        ++measured;
+        worst = std::max(worst, (r.state->position - Ball(k)).norm());
+      }
+    }
+    if (whole) {
+      EXPECT_GE(measured, 12);  // from the 4th set on, when the tracklet confirms
+      EXPECT_LT(worst, 0.02);
+    } else {
+      EXPECT_EQ(measured, 0);  // a fragment never starts a track
+    }
+  }
 }
 
 TEST_F(FrameSetTrackerTest, OneCameraRigPlacesTheBallByItsDiameter) {
