@@ -54,9 +54,9 @@ T CauchyScale(const T& s, double b) {
 
 // Every view of a piece in one pass of the integration, outwards from t0 (a block per view would
 // integrate from t0 to each: quadratic in the views). Per view: two bearing residuals across the
-// ray (in sigmas, Huber loss) and the diameter's distance times the fit's common scale (Cauchy
-// loss; 0 without a diameter), the losses folded into the residuals (a loss's threshold <= 0:
-// none). Parameters: the piece, the scale.
+// ray (in sigmas, Huber loss) and the diameter's distance times the piece's scale (Cauchy loss;
+// 0 without a diameter), the losses folded into the residuals (a loss's threshold <= 0: none).
+// Parameters: the piece, the scale.
 struct PieceCost {
   PieceCost(std::vector<BearingObservation> observations, double t0, const FlightModel& m,
             double step, double huber, double cauchy)
@@ -204,6 +204,17 @@ struct ScalePrior {
   double sigma;
 };
 
+// Each piece's scale about the fit's common one (StrokeFitOptions::piece_scale_sigma).
+struct PieceScalePrior {
+  explicit PieceScalePrior(double sigma) : sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* piece, const T* common, T* r) const {
+    r[0] = (piece[0] - common[0]) / T(sigma);
+    return true;
+  }
+  double sigma;
+};
+
 using PieceParams = std::array<double, 9>;
 
 PieceParams ToParams(const FlightPiece& piece) {
@@ -217,9 +228,9 @@ PieceParams ToParams(const FlightPiece& piece) {
 
 bool StrokeFitOptions::IsValid(std::string* error) const {
   if (!(magnus_sigma > 0.0 && toss_magnus_sigma > 0.0 && toss_horizontal_sigma > 0.0 &&
-        contact_sigma > 0.0 && distance_scale_sigma >= 0.0 && huber_sigmas > 0.0 &&
-        distance_loss_sigmas > 0.0 && max_step > 0.0 && max_iterations > 0 && model.gravity > 0.0 &&
-        model.drag_per_mass >= 0.0)) {
+        contact_sigma > 0.0 && distance_scale_sigma >= 0.0 && piece_scale_sigma >= 0.0 &&
+        huber_sigmas > 0.0 && distance_loss_sigmas > 0.0 && max_step > 0.0 && max_iterations > 0 &&
+        model.gravity > 0.0 && model.drag_per_mass >= 0.0)) {
     *error = "stroke fit: sigmas, step, iterations and gravity must be positive, drag >= 0";
     return false;
   }
@@ -309,17 +320,35 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   const bool anchored =
       lead_in != nullptr || std::any_of(guess.junctions.begin(), guess.junctions.end(),
                                         [](const Junction& j) { return j.on_plane; });
+  const auto bound = [&](double* scale) {
+    problem.SetParameterLowerBound(scale, 0,
+                                   std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma));
+    problem.SetParameterUpperBound(scale, 0, 1.0 + 3.0 * options.distance_scale_sigma);
+  };
   if (options.distance_scale_sigma > 0.0 && anchored) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(
                                  new ScalePrior(options.distance_scale_sigma)),
                              nullptr, &distance_scale);
     // No further than 3 sigmas: where only a scale far off would reconcile the diameters with the
     // bearings, the fit is wrong, and its diameters' residuals should say so.
-    problem.SetParameterLowerBound(&distance_scale, 0,
-                                   std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma));
-    problem.SetParameterUpperBound(&distance_scale, 0, 1.0 + 3.0 * options.distance_scale_sigma);
+    bound(&distance_scale);
   } else {
     problem.SetParameterBlockConstant(&distance_scale);
+  }
+  // Each piece's own scale, tied to the common one (piece_scale_sigma 0: the common one).
+  const bool per_piece =
+      options.piece_scale_sigma > 0.0 && options.distance_scale_sigma > 0.0 && anchored;
+  std::vector<double> piece_scale(n, 1.0);
+  for (size_t i = 0; i < n; ++i) {
+    problem.AddParameterBlock(&piece_scale[i], 1);
+    if (per_piece) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PieceScalePrior, 1, 1, 1>(
+                                   new PieceScalePrior(options.piece_scale_sigma)),
+                               nullptr, &piece_scale[i], &distance_scale);
+      bound(&piece_scale[i]);  // as the common one: a piece that slid is still seen to disagree
+    } else {
+      problem.SetParameterBlockConstant(&piece_scale[i]);
+    }
   }
   for (size_t i = 0; i < n; ++i) {
     const double t0 = guess.pieces[i].t0;
@@ -328,7 +357,8 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
     cost->AddParameterBlock(9);
     cost->AddParameterBlock(1);
     cost->SetNumResiduals(3 * static_cast<int>(observations[i].size()));
-    problem.AddResidualBlock(cost, nullptr, pieces[i].data(), &distance_scale);
+    problem.AddResidualBlock(cost, nullptr, pieces[i].data(),
+                             per_piece ? &piece_scale[i] : &distance_scale);
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<MagnusPrior, 3, 9>(new MagnusPrior(
             guess.pieces[i].toss ? options.toss_magnus_sigma : options.magnus_sigma)),
@@ -419,7 +449,8 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
     // The report: the fit's own residuals, without the losses.
     const PieceCost report(observations[i], piece.t0, model, step, 0.0, 0.0);
     std::vector<double> r(3 * observations[i].size());
-    const double* params[] = {pieces[i].data(), &distance_scale};
+    const double scale_i = per_piece ? piece_scale[i] : distance_scale;
+    const double* params[] = {pieces[i].data(), &scale_i};
     report(params, r.data());
     std::vector<double> distance_shares;
     for (size_t k = 0; k < observations[i].size(); ++k) {
@@ -428,7 +459,7 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
       const BearingObservation& o = observations[i][k];
       if (o.distance > 0.0) {
         distance_shares.push_back(std::abs(r[3 * k + 2]) * o.distance_sigma /
-                                  (distance_scale * o.distance));
+                                  (scale_i * o.distance));
       }
     }
     if (!distance_shares.empty()) {

@@ -66,12 +66,12 @@ struct Stroke {
   // With a lead-in: where the lead-in piece meets pieces[0].
   std::optional<Junction> start;
   double rms_bearing = 0.0;  // bearing residuals of the fit, in sigmas
-  // Per piece, the median over its views with a diameter of |fitted distance / (scale x the
-  // diameter's) - 1|; the largest of them. The losses let stray diameters go, but a piece most
-  // of them disagree with was placed where the ball was not (slid along its rays, where only the
-  // bearings hold it). 0: no diameters.
+  // Per piece, the median over its views with a diameter of |fitted distance / (the piece's
+  // scale x the diameter's) - 1|; the largest of them. The losses let stray diameters go, but a
+  // piece most of them disagree with was placed where the ball was not (slid along its rays, where
+  // only the bearings hold it). 0: no diameters.
   double median_distance_error = 0.0;
-  double distance_scale = 1.0;  // the fitted scale of the diameters' distances
+  double distance_scale = 1.0;  // the fitted common scale of the diameters' distances
 };
 
 // The last piece of the stroke before, already fitted and held fixed: pieces[0] starts where it
@@ -95,6 +95,13 @@ struct StrokeFitOptions {
   // pull in the image alone would fix it, but the spin's pull confounds it); it stays within 3
   // sigmas. 0: the scale is 1.
   double distance_scale_sigma = 0.1;
+  // ...and each piece's scale about that common one, ~ N(common, sigma^2), where the fit is
+  // anchored: the bias changes with the ball's speed (a serve toss at 2-3 m/s is sharp, the
+  // drive after it blurred over a ball's diameter in a 4 ms exposure) and with the light along the
+  // flight. A toss without spin is placed by gravity's pull in the image, a piece before a
+  // bounce by the table. Chosen on mono tuning scenes 1-12 (0.03 and 0.05 tried;
+  // docs/DECISIONS.md). 0: one scale for all.
+  double piece_scale_sigma = 0.05;
   // The velocity after a bounce vs the bounce map of the velocity before (model.restitution,
   // model.friction): what spin can change, m/s.
   double bounce_sigma_horizontal = 0.7;
