@@ -14,8 +14,8 @@ bool TrackInitiatorOptions::IsValid(std::string* error) const {
       !(toss_max_lean >= 0.0) || !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) ||
       !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) || fall_points < 4 ||
       !(fit_tolerance > 0.0) || !(fit_sigmas >= 0.0) || !(max_span_s > max_gap_s) ||
-      !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 || min_confirm_points < 2 ||
-      min_confirm_points > confirm_points || !(confirm_span_s > 0.0) ||
+      !(max_speed > 0.0) || max_tracklets < 1 || max_missed < 0 || max_missed_one_view < 0 ||
+      min_confirm_points < 2 || min_confirm_points > confirm_points || !(confirm_span_s > 0.0) ||
       !(min_travel_sigmas >= 0.0) || !(fall_max_curvature_sigma > 0.0)) {
     if (error) {
       *error =
@@ -200,14 +200,15 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   // frames take longer than max_gap_s, and the count of time-stamps is what bounds the gap.
   if (last_t_ && (period_ == 0 || t - *last_t_ < period_)) period_ = t - *last_t_;
   last_t_ = t;
-  const TimeNs max_gap =
-      std::max(FromSeconds(options_.max_gap_s),
-               static_cast<TimeNs>(static_cast<double>(period_) * (options_.max_missed + 1.5)));
   const TimeNs max_span = FromSeconds(options_.max_span_s);
   const int64_t stamp = ++stamps_;
   std::erase_if(tracklets_, [&](const Tracklet& k) {
-    return t - k.points.back().t > max_gap ||
-           stamp - k.points.back().stamp > options_.max_missed + 1;
+    const int missed = k.points.back().measurement.cameras >= 2 ? options_.max_missed
+                                                                : options_.max_missed_one_view;
+    const TimeNs max_gap =
+        std::max(FromSeconds(options_.max_gap_s),
+                 static_cast<TimeNs>(static_cast<double>(period_) * (missed + 1.5)));
+    return t - k.points.back().t > max_gap || stamp - k.points.back().stamp > missed + 1;
   });
   for (Tracklet& k : tracklets_) {
     const auto old = std::find_if(k.points.begin(), k.points.end(),

@@ -72,8 +72,12 @@ struct TrackInitiatorOptions {
   // A tracklet not extended for more than max_missed time-stamps ends (the ball is seen in
   // almost every frame; a flicker of the hall is not), and one not extended for max_gap_s, or
   // for max_missed + 1.5 periods of the time-stamps where that is longer (30 fps or slower).
+  // Whose last point is of one view (one camera: placed along its ray by its diameter, to
+  // centimetres) waits max_missed_one_view: the gate grows with the wait, and through a wider
+  // one a point that far along the ray passes.
   double max_gap_s = 0.07;
-  int max_missed = 1;
+  int max_missed = 2;
+  int max_missed_one_view = 1;
   double max_span_s = 0.25;       // points older than this slide out
   double max_speed = 45.0;        // m/s; a second point farther than this from the first is not it
   double gravity = 9.81;          // m/s^2
