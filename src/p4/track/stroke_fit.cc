@@ -339,16 +339,11 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   const bool per_piece =
       options.piece_scale_sigma > 0.0 && options.distance_scale_sigma > 0.0 && anchored;
   std::vector<double> piece_scale(n, 1.0);
-  for (size_t i = 0; i < n; ++i) {
-    problem.AddParameterBlock(&piece_scale[i], 1);
-    if (per_piece) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PieceScalePrior, 1, 1, 1>(
-                                   new PieceScalePrior(options.piece_scale_sigma)),
-                               nullptr, &piece_scale[i], &distance_scale);
-      bound(&piece_scale[i]);  // as the common one: a piece that slid is still seen to disagree
-    } else {
-      problem.SetParameterBlockConstant(&piece_scale[i]);
-    }
+  for (size_t i = 0; i < n && per_piece; ++i) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PieceScalePrior, 1, 1, 1>(
+                                 new PieceScalePrior(options.piece_scale_sigma)),
+                             nullptr, &piece_scale[i], &distance_scale);
+    bound(&piece_scale[i]);  // as the common one: a piece that slid is still seen to disagree
   }
   for (size_t i = 0; i < n; ++i) {
     const double t0 = guess.pieces[i].t0;
