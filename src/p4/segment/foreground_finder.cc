@@ -126,61 +126,80 @@ int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
   return static_cast<int>(out->size());
 }
 
+ForegroundFinder::BlockRange ForegroundFinder::BlocksOf(const Roi& roi, const BackgroundModel& bg) {
+  return {std::max(0, roi.x0 / 2), std::max(0, roi.y0 / 2),
+          std::min(bg.width() / 2, (roi.x1 + 1) / 2), std::min(bg.height() / 2, (roi.y1 + 1) / 2)};
+}
+
+int ForegroundFinder::CountDiffering(const ImageView& image, const BackgroundModel& bg,
+                                     const BlockRange& range, double sigmas, uint8_t* out) {
+  const int bw = bg.width() / 2;
+  const double k2 = sigmas * sigmas;
+  int differ = 0;
+  for (int by = range.y0; by < range.y1; ++by) {
+    for (int bx = range.x0; bx < range.x1; ++bx) {
+      const bool d = bg.BlockDistance2(image, bx, by) > k2;
+      differ += d;
+      if (out) out[static_cast<std::size_t>(by) * bw + bx] = d;
+    }
+  }
+  return differ;
+}
+
 BlockMask ForegroundFinder::DifferingBlocks(const ImageView& image, const BackgroundModel& bg,
                                             const Roi& roi_in, double sigmas, bool grow) {
   const Roi roi = roi_in.empty() ? Roi{0, 0, image.width, image.height} : roi_in;
   const int bw = bg.width() / 2, bh = bg.height() / 2;
-  MarkDiffering(image, bg, std::max(0, roi.x0 / 2 - 1), std::max(0, roi.y0 / 2 - 1),
-                std::min(bw, (roi.x1 + 1) / 2 + 1), std::min(bh, (roi.y1 + 1) / 2 + 1), sigmas,
-                grow);
+  const BlockRange range{std::max(0, roi.x0 / 2 - 1), std::max(0, roi.y0 / 2 - 1),
+                         std::min(bw, (roi.x1 + 1) / 2 + 1), std::min(bh, (roi.y1 + 1) / 2 + 1)};
+  CompareBlocks(image, bg, range, sigmas);
+  GrowMask(bg, range, grow);
   return BlockMask{mask_.data(), bw, bh};
 }
 
 double ForegroundFinder::DifferingShare(const ImageView& image, const BackgroundModel& bg,
                                         const Roi& roi, double sigmas) {
-  const int bw = bg.width() / 2, bh = bg.height() / 2;
-  const int bx0 = std::max(0, roi.x0 / 2), bx1 = std::min(bw, (roi.x1 + 1) / 2);
-  const int by0 = std::max(0, roi.y0 / 2), by1 = std::min(bh, (roi.y1 + 1) / 2);
-  if (bx1 <= bx0 || by1 <= by0) return 0.0;
-  const double k2 = sigmas * sigmas;
-  int differ = 0;
-  for (int by = by0; by < by1; ++by) {
-    for (int bx = bx0; bx < bx1; ++bx) differ += bg.BlockDistance2(image, bx, by) > k2;
-  }
-  return static_cast<double>(differ) / ((bx1 - bx0) * (by1 - by0));
+  const BlockRange range = BlocksOf(roi, bg);
+  if (range.size() == 0) return 0.0;
+  return static_cast<double>(CountDiffering(image, bg, range, sigmas, nullptr)) / range.size();
 }
 
 BlockMask ForegroundFinder::DifferingBlocksWithin(const ImageView& image, const BackgroundModel& bg,
                                                   std::span<const Roi> within, double sigmas,
-                                                  bool grow) {
+                                                  bool grow, double max_share,
+                                                  std::vector<Roi>* taken) {
   const int bw = bg.width() / 2, bh = bg.height() / 2;
   mask_.assign(static_cast<std::size_t>(bw) * bh, 1);
   for (const Roi& roi : within) {
-    MarkDiffering(image, bg, std::max(0, roi.x0 / 2), std::max(0, roi.y0 / 2),
-                  std::min(bw, (roi.x1 + 1) / 2), std::min(bh, (roi.y1 + 1) / 2), sigmas, grow);
+    // Each window's blocks compared once: for its share and for the mask.
+    const BlockRange range = BlocksOf(roi, bg);
+    const int differ = CompareBlocks(image, bg, range, sigmas);
+    const double share = range.size() == 0 ? 0.0 : static_cast<double>(differ) / range.size();
+    if (share > max_share) continue;
+    GrowMask(bg, range, grow);
+    if (taken) taken->push_back(roi);
   }
   return BlockMask{mask_.data(), bw, bh};
 }
 
-void ForegroundFinder::MarkDiffering(const ImageView& image, const BackgroundModel& bg, int bx0,
-                                     int by0, int bx1, int by1, double sigmas, bool grow) {
-  const int bw = bg.width() / 2, bh = bg.height() / 2;
-  if (static_cast<int>(mask_.size()) != bw * bh) mask_.assign(static_cast<std::size_t>(bw) * bh, 0);
-  if (differs_.size() != mask_.size()) differs_.assign(mask_.size(), 0);
-  const double k2 = sigmas * sigmas;
-  for (int by = by0; by < by1; ++by) {
-    for (int bx = bx0; bx < bx1; ++bx) {
-      differs_[static_cast<std::size_t>(by) * bw + bx] = bg.BlockDistance2(image, bx, by) > k2;
-    }
-  }
+int ForegroundFinder::CompareBlocks(const ImageView& image, const BackgroundModel& bg,
+                                    const BlockRange& range, double sigmas) {
+  const std::size_t blocks = static_cast<std::size_t>(bg.width() / 2) * (bg.height() / 2);
+  if (mask_.size() != blocks) mask_.assign(blocks, 0);
+  if (differs_.size() != blocks) differs_.assign(blocks, 0);
+  return CountDiffering(image, bg, range, sigmas, differs_.data());
+}
+
+void ForegroundFinder::GrowMask(const BackgroundModel& bg, const BlockRange& range, bool grow) {
+  const int bw = bg.width() / 2;
   const int reach = grow ? 1 : 0;
-  for (int by = by0; by < by1; ++by) {
-    for (int bx = bx0; bx < bx1; ++bx) {
+  for (int by = range.y0; by < range.y1; ++by) {
+    for (int bx = range.x0; bx < range.x1; ++bx) {
       uint8_t any = 0;
       for (int dy = -reach; dy <= reach && !any; ++dy) {
         for (int dx = -reach; dx <= reach; ++dx) {
           const int x = bx + dx, y = by + dy;
-          if (x >= bx0 && x < bx1 && y >= by0 && y < by1 &&
+          if (x >= range.x0 && x < range.x1 && y >= range.y0 && y < range.y1 &&
               differs_[static_cast<std::size_t>(y) * bw + x]) {
             any = 1;
             break;

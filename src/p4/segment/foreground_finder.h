@@ -92,9 +92,12 @@ class ForegroundFinder {
   // Every block of the image, but inside the `within` windows only the blocks that differ (as
   // DifferingBlocks): a colour region too large for the ball (a floor or banner of its colour,
   // which the ball over it joins) is searched again on what is not the hall, the rest as it was.
-  // Valid until the next call. Precondition: the model has the image's size.
+  // Only windows whose DifferingShare is at most `max_share` are masked (each window's blocks
+  // compared once for both); they are appended to *taken when given. Valid until the next call.
+  // Precondition: the model has the image's size.
   BlockMask DifferingBlocksWithin(const ImageView& image, const BackgroundModel& background,
-                                  std::span<const Roi> within, double sigmas, bool grow = true);
+                                  std::span<const Roi> within, double sigmas, bool grow = true,
+                                  double max_share = 1.0, std::vector<Roi>* taken = nullptr);
 
   // Measures a window (e.g. a colour region's box grown by a margin) by coverage.
   // False when nothing in it is the ball.
@@ -107,9 +110,23 @@ class ForegroundFinder {
   std::vector<float> block_shade_, block_alpha_;
   std::vector<uint8_t> kind_, counts_;
   std::vector<uint8_t> mask_, differs_;  // DifferingBlocks: the mask and the blocks before growth
-  // Writes mask_ over the blocks [bx0, bx1) x [by0, by1).
-  void MarkDiffering(const ImageView& image, const BackgroundModel& background, int bx0, int by0,
-                     int bx1, int by1, double sigmas, bool grow);
+  // The 2x2 blocks [x0, x1) x [y0, y1) of the background model.
+  struct BlockRange {
+    int x0, y0, x1, y1;
+    int size() const { return x1 > x0 && y1 > y0 ? (x1 - x0) * (y1 - y0) : 0; }
+  };
+  // The blocks a pixel ROI covers, inside the model's.
+  static BlockRange BlocksOf(const Roi& roi, const BackgroundModel& background);
+  // The blocks of `range` that differ from the background by more than `sigmas`, each written
+  // to `out` (rows of background.width() / 2) when given; returns how many.
+  static int CountDiffering(const ImageView& image, const BackgroundModel& background,
+                            const BlockRange& range, double sigmas, uint8_t* out);
+  // Writes differs_ over the blocks of `range` (both buffers sized to the model's blocks);
+  // returns how many differ.
+  int CompareBlocks(const ImageView& image, const BackgroundModel& background,
+                    const BlockRange& range, double sigmas);
+  // Writes mask_ over the blocks of `range`: those that differ, grown by one within the range.
+  void GrowMask(const BackgroundModel& background, const BlockRange& range, bool grow);
 };
 
 }  // namespace p4::segment

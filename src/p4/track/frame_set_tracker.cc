@@ -103,6 +103,12 @@ double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
   return SphereDiameterPx(camera, point, table::kBallRadius);
 }
 
+// Whether the edge fit measured a width across (a disc, or a short streak within
+// max_elongation): its minor diameter is then the ball's.
+bool EdgeGivesDiameter(const segment::EdgeCentre& e, double max_elongation) {
+  return e.minor_diameter > 0.0 && e.major_diameter <= max_elongation * e.minor_diameter;
+}
+
 // Camera c's view of a faint streak: its middle, the ball's diameter given to it.
 Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter) {
   Detection d{c,
@@ -192,19 +198,16 @@ int FrameSetTracker::SplitMerged(int c, const ImageView& image, int found, doubl
   const segment::BackgroundModel& background = backgrounds_[c];
   // Too large for the ball in this camera (nearer than a metre it is never seen), and mostly
   // as the background (a moving shirt of the ball's colour would split into ball-sized pieces).
-  std::vector<segment::Roi> merged;
+  std::vector<segment::Roi> large, merged;
   for (int k = 0; k < found; ++k) {
     const segment::Region& r = regions[k];
-    const segment::Roi box{r.x0, r.y0, r.x1, r.y1};
-    if (TooLargeForBall(r, largest) &&
-        segment::ForegroundFinder::DifferingShare(image, background, box, options_.mask_sigmas) <=
-            options_.split_max_moving) {
-      merged.push_back(box);
-    }
+    if (TooLargeForBall(r, largest)) large.push_back({r.x0, r.y0, r.x1, r.y1});
   }
-  if (merged.empty()) return -1;
+  if (large.empty()) return -1;
   const segment::BlockMask blocks = foreground_finders_[c].DifferingBlocksWithin(
-      image, background, merged, options_.mask_sigmas, options_.mask_grow);
+      image, background, large, options_.mask_sigmas, options_.mask_grow, options_.split_max_moving,
+      &merged);
+  if (merged.empty()) return -1;
   // The floor's pieces that differ (shadows, feet) must not crowd the ball out.
   segment::SegmentOptions more = options_.segment;
   more.max_regions = 4 * more.max_regions;
@@ -452,8 +455,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       if (const auto e = segment::MeasureEdgeCentre(image, r.cx, r.cy, radius, options_.edge);
           e && std::hypot(e->cx - r.cx, e->cy - r.cy) < 0.5 * d.diameter_px + 1.0) {
         d.pixel = {e->cx, e->cy};
-        if (e->minor_diameter > 0.0 &&
-            e->major_diameter <= options_.edge_diameter_max_elongation * e->minor_diameter) {
+        if (EdgeGivesDiameter(*e, options_.edge_diameter_max_elongation)) {
           d.diameter_px = e->minor_diameter;
         }
       }
@@ -861,8 +863,7 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
       tried.emplace_back(c, k);
       const auto e = segment::MeasureEdgeCentre(*images[c], d.observed.x(), d.observed.y(),
                                                 0.5 * expected, options_.edge);
-      if (!e || e->minor_diameter <= 0.0 ||
-          e->major_diameter > options_.edge_diameter_max_elongation * e->minor_diameter ||
+      if (!e || !EdgeGivesDiameter(*e, options_.edge_diameter_max_elongation) ||
           std::hypot(e->cx - d.observed.x(), e->cy - d.observed.y()) > 0.5 * expected) {
         continue;
       }
