@@ -62,6 +62,9 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   // A small view here is a small thing that moves, not the lit part of a shaded ball that a
   // ball's colour tables took: no view is measured again at the ball's size.
   tracking.whole_fragments = false;
+  // Nor looked for along another view's epipolar line by its edge alone: the colour is learnt
+  // from what the background mask outlines.
+  tracking.search_epipolars = false;
   // Its window stays on what it finds: everything that moves is a region of some size, and a
   // whole-image search after every hit lets the colour-free tracker jump to arms and shirts
   // (sports tuning seed 23: the learnt colour took 55 % of the moving pixels instead of 6 %).

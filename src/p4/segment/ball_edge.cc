@@ -129,13 +129,13 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     ux[static_cast<std::size_t>(r)] = std::cos(a), uy[static_cast<std::size_t>(r)] = std::sin(a);
   }
   EdgeCentre out;
+  double median[3];
   for (int iteration = 0; iteration < o.iterations; ++iteration) {
     // Every ray's colours; the background is the ring beyond the ball: per channel the median of
     // all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that
     // one differs from the ring (a line or a shadow across some rays' ends is not their
     // background).
     ring.clear();
-    double median[3];
     for (int r = 0; r < o.directions; ++r) {
       const auto j = static_cast<std::size_t>(r);
       sampled[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &colours[3 * n * j]);
@@ -226,6 +226,23 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const double q = std::hypot(f(1), f(2));
   out.minor_diameter = f(0) + q > 0.0 ? 2.0 / std::sqrt(f(0) + q) : 0.0;
   out.major_diameter = f(0) - q > 0.0 ? 2.0 / std::sqrt(f(0) - q) : 0.0;
+  // The colour inside: every sampled ray's first samples (the rays start within settled_px of
+  // the centre, or at the last centre before it moved less than that).
+  const int inside = std::max(
+      1, std::min(n, 1 + static_cast<int>(0.25 * std::max(out.minor_diameter, 2.0) / o.step_px)));
+  int count = 0;
+  for (int r = 0; r < o.directions; ++r) {
+    if (!sampled[static_cast<std::size_t>(r)]) continue;
+    for (int k = 0; k < inside; ++k, ++count) {
+      for (int channel = 0; channel < 3; ++channel) {
+        out.colour[channel] += colours[3 * (static_cast<std::size_t>(n) * r + k) + channel];
+      }
+    }
+  }
+  for (int channel = 0; channel < 3; ++channel) {
+    out.colour[channel] /= std::max(1, count);
+    out.ring[channel] = median[channel];
+  }
   out.cx = cx, out.cy = cy;
   return out;
 }

@@ -53,6 +53,10 @@ struct EdgeCentre {
   double minor_diameter = 0.0, major_diameter = 0.0;
   int pairs = 0;             // opposite rays that agreed
   double residual_px = 0.0;  // RMS of their half-differences about the fit
+  // The ball's colour (Y, U, V: the mean of the last rays' samples within half the minor
+  // radius of where they started) and the ring's beyond it (per channel the median).
+  double colour[3] = {0.0, 0.0, 0.0};
+  double ring[3] = {0.0, 0.0, 0.0};
 };
 
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a

@@ -36,6 +36,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "split_max_moving must be in [0, 1] and split_max_elongation at least 1";
     return false;
   }
+  if (search_views_per_camera < 0 || !epipolar.IsValid(error)) {
+    if (error && search_views_per_camera < 0) *error = "search_views_per_camera must be >= 0";
+    return false;
+  }
   if (!(streak_min_frame_s > 0.0)) {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
@@ -540,6 +544,11 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (options_.whole_fragments && WholeFragments(hypotheses, images, &candidates)) {
     hypotheses = Hypotheses(candidates);
   }
+  const auto in_step = [&](int c) { return image_time(c) == t; };
+  if (options_.search_epipolars && n >= 2 &&
+      SearchEpipolars(hypotheses, predicted, images, in_step, &candidates)) {
+    hypotheses = Hypotheses(candidates);
+  }
   const bool confirming = options_.confirm_tracks;
   // One camera: each candidate placed by its diameter (nullopt: outside the hall).
   std::vector<std::optional<Measurement>> placed;
@@ -879,6 +888,80 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
     }
   }
   return changed;
+}
+
+bool FrameSetTracker::SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
+                                      const std::optional<Eigen::Vector3d>& predicted,
+                                      std::span<const std::optional<ImageView>> images,
+                                      const std::function<bool(int)>& in_step,
+                                      std::vector<std::vector<Detection>>* candidates) const {
+  const bool placed = std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& h) {
+    return !h.fragment && (!predicted || (h.estimate.point - *predicted).norm() <=
+                                             options_.max_prediction_distance);
+  });
+  if (placed) return false;
+  EpipolarSearchOptions search = options_.epipolar;
+  search.half_length = options_.hall_half_size.x();
+  search.half_width = options_.hall_half_size.y();
+  search.max_z = options_.hall_half_size.z();
+  search.floor_z = table::kFloorZ - 0.02;
+  search.ball_radius = table::kBallRadius;
+  const int n = rig_.size();
+  const auto has_image = [&](int c) {
+    return c < static_cast<int>(images.size()) && images[c] && in_step(c);
+  };
+  std::vector<std::vector<Detection>> found(n);
+  for (int a = 0; a < n; ++a) {
+    if (!has_image(a)) continue;
+    const std::vector<Detection>& views = (*candidates)[a];
+    std::vector<int> order;
+    for (int k = 0; k < static_cast<int>(views.size()); ++k) {
+      const Detection& d = views[k];
+      if (!d.streak && !d.still && !d.cut && d.diameter_px >= 2.0) order.push_back(k);
+    }
+    if (predicted) {
+      if (const auto px = rig_.cameras[a].Project(*predicted)) {
+        std::stable_sort(order.begin(), order.end(), [&](int i, int j) {
+          return (views[i].pixel - *px).squaredNorm() < (views[j].pixel - *px).squaredNorm();
+        });
+      }
+    }
+    if (static_cast<int>(order.size()) > options_.search_views_per_camera) {
+      order.resize(options_.search_views_per_camera);
+    }
+    for (int k : order) {
+      const Detection& d = views[k];
+      // The view's own colour, and whether it is round at all.
+      const auto own = segment::MeasureEdgeCentre(*images[a], d.observed.x(), d.observed.y(),
+                                                  0.5 * d.diameter_px, options_.edge);
+      if (!own || !EdgeGivesDiameter(*own, search.max_elongation)) continue;
+      for (int b = 0; b < n; ++b) {
+        if (b == a || !has_image(b)) continue;
+        const auto hit = SearchAlongEpipolar(rig_.cameras[a], d.pixel, d.diameter_px, own->colour,
+                                             rig_.cameras[b], *images[b], search);
+        if (!hit) continue;
+        const auto near = [&](const Detection& e) {
+          return (e.pixel - hit->pixel).norm() < 0.5 * hit->diameter_px;
+        };
+        if (std::any_of((*candidates)[b].begin(), (*candidates)[b].end(), near) ||
+            std::any_of(found[b].begin(), found[b].end(), near)) {
+          continue;
+        }
+        Detection view{
+            b, hit->pixel, hit->diameter_px,
+            static_cast<int>(std::lround(M_PI / 4.0 * hit->diameter_px * hit->diameter_px)), false};
+        view.observed = view.pixel;
+        view.outside = d.outside;
+        found[b].push_back(view);
+      }
+    }
+  }
+  bool any = false;
+  for (int b = 0; b < n; ++b) {
+    for (Detection& view : found[b]) (*candidates)[b].push_back(view);
+    any = any || !found[b].empty();
+  }
+  return any;
 }
 
 const FrameSetTracker::Hypothesis* FrameSetTracker::Pick(

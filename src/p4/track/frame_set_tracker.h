@@ -30,6 +30,7 @@
 #include "p4/segment/streak_search.h"
 #include "p4/track/ball_tracker.h"
 #include "p4/track/camera_pool.h"
+#include "p4/track/epipolar_search.h"
 #include "p4/track/track_initiator.h"
 
 namespace p4::track {
@@ -59,6 +60,16 @@ struct FrameSetOptions {
   // A fragment's views are measured again by the ball's edge at the expected size
   // (FrameSetTracker::WholeFragments); those that hold are whole views.
   bool whole_fragments = true;
+  // Where no whole hypothesis lies near the prediction (none at all without a track), each
+  // camera's first search_views_per_camera views (nearest the predicted ball first; not streaks,
+  // still spots or views cut by the image's edge; round by the edge fit) are looked for in the
+  // other cameras along their epipolar segments, by the ball's edge (epipolar_search.h): the
+  // tables may take nothing of a ball in dimmer light. The hall and the ball's radius of
+  // `epipolar` are replaced by the tracker's. Cameras in step only (their images at the set's
+  // time).
+  bool search_epipolars = true;
+  int search_views_per_camera = 3;
+  EpipolarSearchOptions epipolar;
   // Where a ball can be: |x|, |y| and the height above the table top (m); the floor below.
   Eigen::Vector3d hall_half_size{8.0, 6.0, 5.0};
   bool use_roi = true;
@@ -331,6 +342,13 @@ class FrameSetTracker {
   bool WholeFragments(const std::vector<Hypothesis>& hypotheses,
                       std::span<const std::optional<ImageView>> images,
                       std::vector<std::vector<Detection>>* candidates) const;
+  // search_epipolars: each find joins its camera's candidates. Returns whether any did (the
+  // hypotheses are then stale). `in_step(c)`: camera c's image is at the set's time.
+  bool SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
+                       const std::optional<Eigen::Vector3d>& predicted,
+                       std::span<const std::optional<ImageView>> images,
+                       const std::function<bool(int)>& in_step,
+                       std::vector<std::vector<Detection>>* candidates) const;
   // The hypothesis nearest the prediction among those of most views (the best without one).
   // Fragments only near the prediction.
   const Hypothesis* Pick(const std::vector<Hypothesis>& hypotheses,

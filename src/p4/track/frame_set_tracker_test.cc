@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "p4/core/table.h"
 #include "p4/geometry/sphere_depth.h"
@@ -510,11 +511,13 @@ TEST_F(FrameSetTrackerTest, ACoastingTrackSearchesTheWholeImage) {
   // After a hit the filter coasts on and camera 0's window follows something of the ball's size
   // along the old path (an arm's edge). Once the track has missed more than roi_max_missed sets,
   // the cameras search the whole image and the ball is found where it flies; a window kept for
-  // longer (roi_max_missed 100) holds camera 0 on the arm and the ball stays lost.
+  // longer (roi_max_missed 100) holds camera 0 on the arm and the ball stays lost. (The epipolar
+  // search would find it in camera 0 from camera 1's view: off, to see the windows alone.)
   const Eigen::Vector3d away(1.0, -0.5, 0.5);
   for (const int max_missed : {1, 100}) {
     FrameSetOptions options;
     options.roi_max_missed = max_missed;
+    options.search_epipolars = false;
     FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
     std::optional<FrameSetResult> last;
     for (int k = 0; k < 8; ++k) {
@@ -624,6 +627,26 @@ TEST_F(FrameSetTrackerTest, AFragmentOfTheBallContinuesATrackButNeverStartsOne) 
 class SharpRigTest : public FrameSetTrackerTest {
  protected:
   SharpRigTest() : FrameSetTrackerTest(1280, 720) {}
+
+  struct Measured {
+    int sets = 0;        // whose state is measured by at least min_cameras views
+    double worst = 0.0;  // m, of those states from Ball(k)
+  };
+  // Sets k = 0..15 at 120 fps, frames(k) each, through a tracker with these options.
+  Measured Run(const FrameSetOptions& options,
+               const std::function<std::vector<std::optional<ImageView>>(int)>& frames,
+               int min_cameras) {
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    Measured m;
+    for (int k = 0; k < 16; ++k) {
+      const auto r = tracker.Process(FromSeconds(k / 120.0), frames(k));
+      if (r.state && r.state->measured && r.measurement && r.measurement->cameras >= min_cameras) {
+        ++m.sets;
+        m.worst = std::max(m.worst, (r.state->position - Ball(k)).norm());
+      }
+    }
+    return m;
+  }
 };
 
 TEST_F(SharpRigTest, AShadedBallWhoseLitPartAloneIsInTheTablesIsMeasuredWhole) {
@@ -643,21 +666,36 @@ TEST_F(SharpRigTest, AShadedBallWhoseLitPartAloneIsInTheTablesIsMeasuredWhole) {
   for (const bool whole : {true, false}) {
     FrameSetOptions options;
     options.whole_fragments = whole;
-    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
-    int measured = 0;
-    double worst = 0.0;
-    for (int k = 0; k < 16; ++k) {
-      const auto r = tracker.Process(FromSeconds(k / 120.0), shaded_frames(k));
-      if (r.state && r.state->measured) {
-        ++measured;
-        worst = std::max(worst, (r.state->position - Ball(k)).norm());
-      }
-    }
+    const Measured m = Run(options, shaded_frames, 1);
     if (whole) {
-      EXPECT_GE(measured, 12);  // from the 4th set on, when the tracklet confirms
-      EXPECT_LT(worst, 0.02);
+      EXPECT_GE(m.sets, 12);  // from the 4th set on, when the tracklet confirms
+      EXPECT_LT(m.worst, 0.02);
     } else {
-      EXPECT_EQ(measured, 0);  // a fragment never starts a track
+      EXPECT_EQ(m.sets, 0);  // a fragment never starts a track
+    }
+  }
+}
+
+TEST_F(SharpRigTest, ABallTheTablesMissInOneCameraIsFoundAlongTheOthersEpipolar) {
+  // Camera 0 sees the ball as rendered; in camera 1 it flies through dimmer light: its whole disc
+  // a dark orange none of the tables' boxes takes (Y 80, V 150), of the same hue.
+  const auto frames = [&](int k) {
+    auto views = Frames(Ball(k), k);
+    const Camera& camera = rig_.cameras[1];
+    const auto px = camera.Project(Ball(k));
+    const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+    PaintDisc(1, px->x(), px->y(), r + 0.7, 80, 95, 150);
+    return views;
+  };
+  for (const bool search : {true, false}) {
+    FrameSetOptions options;
+    options.search_epipolars = search;
+    const Measured m = Run(options, frames, 2);
+    if (search) {
+      EXPECT_GE(m.sets, 12);  // from the 4th set on, when the tracklet confirms
+      EXPECT_LT(m.worst, 0.01);
+    } else {
+      EXPECT_EQ(m.sets, 0);
     }
   }
 }
