@@ -16,6 +16,7 @@
 #include "p4/segment/streak_search.h"
 #include "p4/sim/camera_layout.h"
 #include "p4/sim/renderer.h"
+#include "p4/track/epipolar_search.h"
 #include "p4/track/kalman_filter.h"
 
 namespace p4 {
@@ -231,6 +232,29 @@ void BM_EpipolarDistance(benchmark::State& state) {
     benchmark::DoNotOptimize(EpipolarDistance(rig.cameras[0], a, rig.cameras[1], b));
 }
 BENCHMARK(BM_EpipolarDistance);
+
+// The ball of camera 1's view looked for along its epipolar segment in camera 0's picture
+// (FrameSetOptions::search_epipolars): arg 1, the ball there (found); 0, a view 30 cm beside it
+// (every fit along the segment fails: the worst case).
+void BM_EpipolarSearch(benchmark::State& state) {
+  const Rig rig = sim::ClubRig(2, 1280, 720, false);
+  const Eigen::Vector3d ball(0.4, 0.1, 0.3);
+  const Eigen::Vector3d point = state.range(0) ? ball : Eigen::Vector3d(0.4, 0.4, 0.3);
+  const Eigen::Vector2d view = rig.cameras[1].Project(point).value();
+  const double diameter =
+      2.0 * 0.02 * rig.cameras[1].fx / (rig.cameras[1].cam_from_world * point).z();
+  const double orange[3] = {137.0, 65.0, 199.0};
+  const I420Image& image = Frame(1280, 720);
+  int fits = 0;
+  for (auto _ : state) {
+    const auto found = track::SearchAlongEpipolar(rig.cameras[1], view, diameter, orange,
+                                                  rig.cameras[0], image.View());
+    benchmark::DoNotOptimize(found);
+    fits = found ? found->fits : -1;
+  }
+  state.counters["fits"] = fits;
+}
+BENCHMARK(BM_EpipolarSearch)->Arg(1)->Arg(0)->Unit(benchmark::kMicrosecond);
 
 void BM_KalmanPredictUpdate(benchmark::State& state) {
   track::KalmanFilter filter{track::KalmanOptions{}};

@@ -108,8 +108,7 @@ TEST_F(EpipolarSearchTest, TwoBallsOnTheSegmentAreNeither) {
 TEST_F(EpipolarSearchTest, AWhiteBallIsSearchedForOnlyWhenAsked) {
   const I420Image image = ImageB(pixel_b_, 1.0, {120.0, 127.0, 129.0});  // a white ball in shade
   const double white[3] = {215.0, 128.0, 127.0};
-  EXPECT_FALSE(
-      SearchAlongEpipolar(a_, pixel_a_, diameter_a_, white, b_, image.View()).has_value());
+  EXPECT_FALSE(SearchAlongEpipolar(a_, pixel_a_, diameter_a_, white, b_, image.View()).has_value());
   EpipolarSearchOptions grey;
   grey.grey_balls = true;
   const auto found = SearchAlongEpipolar(a_, pixel_a_, diameter_a_, white, b_, image.View(), grey);

@@ -718,11 +718,32 @@ void FrameSetTracker::MoveToSetTime(TimeNs t, const std::function<TimeNs(int)>& 
 }
 
 void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result) {
+  const auto& points = tracklet.points;
+  // The flight before a contact the tracklet's gate took the ball through (a hit; a bounce the
+  // filter would have followed too): its points the track did not take become rows of a filter
+  // of their own. Not with one camera: its points, placed by their diameters, are known along
+  // their rays to centimetres, and where its flights part is the smoother's to say (mono tuning
+  // 4: 82 -> 68 % recall).
+  const std::size_t start = rig_.size() >= 2 ? tracklet.flight_start : 0;
+  std::size_t first = 0;
+  while (first < start && last_taken_t_ && points[first].t <= *last_taken_t_) ++first;
+  if (start >= first + 2) {
+    BallTracker before(tracker_options_);
+    for (std::size_t i = first; i < start; ++i) {
+      const TrackletPoint& p = points[i];
+      const auto state = before.Step(p.t, p.measurement);
+      if (state && state->measured) {
+        result->revisions.push_back({p.t, p.measurement, *state, p.detections});
+      }
+    }
+  }
+  // The flight it ends with: the filter replays it; all but its last point are revisions.
   tracker_ = BallTracker(tracker_options_);
   std::optional<TrackedState> last;
-  for (const TrackletPoint& p : tracklet.points) {
+  for (std::size_t i = start; i < points.size(); ++i) {
+    const TrackletPoint& p = points[i];
     last = tracker_.Step(p.t, p.measurement);
-    if (&p == &tracklet.points.back()) break;
+    if (i + 1 == points.size()) break;
     if (last && last->measured) {
       result->revisions.push_back({p.t, p.measurement, *last, p.detections});
     }

@@ -76,11 +76,12 @@ double Scaled(const Eigen::Matrix3d& axes, const Eigen::Vector3d& scale, const E
   return (axes.transpose() * d).cwiseQuotient(scale).norm();
 }
 
-// RMS distance of the points from the best flight through them: p0 + v t + a t^2 / 2 with a
-// gravity and the drag at the mean velocity (first fitted without drag), by least squares; each
-// residual in units of `scale` along the noise axes (one scale for all: the fit is the same).
-double FlightMisfit(std::span<const TrackletPoint> points, const NoiseAxes& noise,
-                    const Eigen::Vector3d& scale, double gravity, double drag_per_mass) {
+// The points' distances from the best flight through them: p0 + v t + a t^2 / 2 with gravity
+// and the drag at the mean velocity (first fitted without drag), by least squares; each in units
+// of `scale` along the noise axes (one scale for all: the fit is the same).
+Eigen::VectorXd FlightResiduals(std::span<const TrackletPoint> points, const NoiseAxes& noise,
+                                const Eigen::Vector3d& scale, double gravity,
+                                double drag_per_mass) {
   const auto n = static_cast<Eigen::Index>(points.size());
   Eigen::MatrixXd a(n, 2);
   Eigen::MatrixXd b(n, 3);
@@ -103,7 +104,7 @@ double FlightMisfit(std::span<const TrackletPoint> points, const NoiseAxes& nois
     accel = Eigen::Vector3d(0.0, 0.0, -gravity) - drag_per_mass * v.norm() * v;
   }
   const Eigen::MatrixXd scaled = (a * fit - b) * noise.axes * scale.cwiseInverse().asDiagonal();
-  return std::sqrt(scaled.squaredNorm() / static_cast<double>(n));
+  return scaled.rowwise().norm();
 }
 
 }  // namespace
@@ -132,6 +133,35 @@ TrackInitiator::Gate TrackInitiator::Predict(const Tracklet& tracklet, TimeNs t)
   return {predicted, noise.axes, (options_.gate + growth * noise.sigma.array()).matrix()};
 }
 
+std::size_t TrackInitiator::FlightStart(const Tracklet& tracklet) const {
+  const std::span<const TrackletPoint> points(tracklet.points);
+  const std::size_t n = points.size();
+  std::size_t first = n - std::min<std::size_t>(n, options_.confirm_points);
+  // Each earlier point joins while it lies on the flight itself, not only within the RMS that
+  // many points after it dilute.
+  while (first > 0) {
+    const Eigen::VectorXd residuals = Residuals(points.subspan(first - 1));
+    if (residuals(0) > 1.0 || residuals.squaredNorm() > static_cast<double>(residuals.size())) {
+      break;
+    }
+    --first;
+  }
+  return first;
+}
+
+Eigen::VectorXd TrackInitiator::Residuals(std::span<const TrackletPoint> points) const {
+  const NoiseAxes noise = AxesOf(points);
+  const Eigen::Vector3d scale =
+      (options_.fit_tolerance + options_.fit_sigmas * noise.sigma.array()).matrix();
+  return FlightResiduals(points, noise, scale, options_.gravity, options_.drag_per_mass);
+}
+
+bool TrackInitiator::FitsOneFlight(std::span<const TrackletPoint> points) const {
+  // RMS within 1.
+  const Eigen::VectorXd residuals = Residuals(points);
+  return residuals.squaredNorm() <= static_cast<double>(residuals.size());
+}
+
 bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   const auto& points = tracklet.points;
   const int n = static_cast<int>(points.size());
@@ -145,12 +175,7 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   // turn, fits none (older points may lie before a bounce).
   const auto newest =
       std::span<const TrackletPoint>(points).last(std::min(n, options_.confirm_points));
-  const NoiseAxes noise = AxesOf(newest);
-  const Eigen::Vector3d fit_scale =
-      (options_.fit_tolerance + options_.fit_sigmas * noise.sigma.array()).matrix();
-  if (FlightMisfit(newest, noise, fit_scale, options_.gravity, options_.drag_per_mass) > 1.0) {
-    return false;
-  }
+  if (!FitsOneFlight(newest)) return false;
   const Eigen::Vector3d travel =
       points.back().measurement.position - points.front().measurement.position;
   const double span = ToSeconds(points.back().t - points.front().t);
@@ -271,6 +296,7 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
   if (best < 0) return std::nullopt;
   Tracklet confirmed = std::move(tracklets_[best]);
   tracklets_.erase(tracklets_.begin() + best);
+  confirmed.flight_start = FlightStart(confirmed);
   // Tracklets that share a point with it are the same ball, a step behind: they go with it.
   const auto shares = [&](const Tracklet& k) {
     for (const TrackletPoint& p : k.points) {

@@ -99,6 +99,10 @@ struct TrackletPoint {
 
 struct Tracklet {
   std::vector<TrackletPoint> points;  // oldest first
+  // Of a confirmed tracklet: its first point of the one flight (gravity and drag, no contact)
+  // that its newest points fit, as far back as they still fit it. Its gate may have taken the
+  // ball through a hit: the points before are the flight the racket ended.
+  std::size_t flight_start = 0;
 };
 
 class TrackInitiator {
@@ -124,6 +128,12 @@ class TrackInitiator {
   };
   Gate Predict(const Tracklet& tracklet, TimeNs t) const;
   bool Confirmed(const Tracklet& tracklet) const;
+  // The points' distances from the best flight through them, in units of fit_tolerance plus
+  // fit_sigmas of their noise; whether they fit it (RMS within 1).
+  Eigen::VectorXd Residuals(std::span<const TrackletPoint> points) const;
+  bool FitsOneFlight(std::span<const TrackletPoint> points) const;
+  // Tracklet::flight_start of a confirmed tracklet.
+  std::size_t FlightStart(const Tracklet& tracklet) const;
 
   TrackInitiatorOptions options_;
   std::vector<Tracklet> tracklets_;

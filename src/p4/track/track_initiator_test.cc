@@ -57,6 +57,34 @@ TEST(TrackInitiator, TheFlyingBallIsConfirmedAmongALampAndAFlicker) {
   EXPECT_EQ(confirmed_at, 13);
   ASSERT_EQ(confirmed->points.size(), 4u);
   for (const auto& p : confirmed->points) EXPECT_EQ(p.detections, std::vector<int>{1});
+  EXPECT_EQ(confirmed->flight_start, 0u);  // one flight
+}
+
+TEST(TrackInitiator, ATrackletThroughAHitKnowsWhereItsFlightStarts) {
+  // 240 sets a second: 2 m/s for 9 sets (6.7 cm, no confirmation), then hit back at 7 m/s; the
+  // gate takes the ball through the hit (4 cm off the drift's prediction).
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  const auto ball = [&](int k) -> Eigen::Vector3d {
+    const double t = k / 240.0, hit = 8 / 240.0;
+    const Eigen::Vector3d n(noise(rng), noise(rng), noise(rng));
+    if (t <= hit) return Eigen::Vector3d(2.0 * t, 0.0, 0.3 - 4.9 * t * t) + n;
+    const double s = t - hit;
+    return Eigen::Vector3d(2.0 * hit - 7.0 * s, -s, 0.3 - 4.9 * hit * hit + s - 4.9 * s * s) + n;
+  };
+  TrackInitiator initiator;
+  std::optional<Tracklet> confirmed;
+  int k = 0;
+  for (; k < 30 && !confirmed; ++k) {
+    confirmed =
+        initiator.Push(FromSeconds(k / 240.0), std::vector{PointAt(k / 240.0, ball(k), 0.002, 0)});
+  }
+  ASSERT_TRUE(confirmed.has_value());
+  ASSERT_GT(confirmed->points.size(), 9u) << "the tracklet should span the hit";
+  EXPECT_EQ(confirmed->points.front().t, 0);
+  // Its flight: from the hit (set 8, the contact's own point fits either flight) on.
+  EXPECT_GE(confirmed->flight_start, 8u);
+  EXPECT_LE(confirmed->flight_start, 9u);
 }
 
 TEST(TrackInitiator, WhatStaysOrFlickersIsNeverConfirmed) {
