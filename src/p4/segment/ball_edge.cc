@@ -15,8 +15,9 @@ double Bilinear(double a, double b, double c, double d, double fx, double fy) {
   return (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * d);
 }
 
-// The colour at (x, y), bilinear: luma at full resolution, chroma from its half-resolution
-// samples (centred at 2i + 0.5, 2j + 0.5); false outside the image.
+}  // namespace
+
+// Chroma samples are centred at 2i + 0.5, 2j + 0.5.
 bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   if (!(x >= 0.0 && y >= 0.0 && x <= image.width - 1.0 && y <= image.height - 1.0)) return false;
   const int x0 = std::min(static_cast<int>(x), image.width - 2);
@@ -39,6 +40,8 @@ bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   out[2] = Bilinear(v[0], v[1], v[2], v[3], sx - i0, sy - j0);
   return true;
 }
+
+namespace {
 
 // Samples along a ray from (cx, cy): n colours (Y, U, V) at o.step_px apart. False when the
 // ray leaves the image.

@@ -59,6 +59,10 @@ struct EdgeCentre {
   double ring[3] = {0.0, 0.0, 0.0};
 };
 
+// The colour (Y, U, V) at (x, y), bilinear: luma at full resolution, chroma from its
+// half-resolution samples. False outside the image.
+bool ColourAt(const ImageView& image, double x, double y, double out[3]);
+
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a
 // radius; `radius_px`: the ball's radius guess (half the region's major axis for a streak).
 // nullopt when too few opposite rays find an edge that agrees (too little contrast, the ball at

@@ -42,6 +42,33 @@ bool SameHue(const double colour_a[3], const double colour_b[3], double min_chro
   return cosine >= std::cos(max_hue_deg * M_PI / 180.0);
 }
 
+namespace {
+
+// Whether `colour` (at `at`) differs from the ring `reach` px around it by the edge fit's
+// contrast.
+bool StandsOut(const ImageView& image, const Eigen::Vector2d& at, const double colour[3],
+               double reach, const segment::EdgeCentreOptions& edge) {
+  std::array<std::array<double, 4>, 3> ring{};
+  const std::array<Eigen::Vector2d, 4> offsets{
+      Eigen::Vector2d(reach, 0.0), Eigen::Vector2d(-reach, 0.0), Eigen::Vector2d(0.0, reach),
+      Eigen::Vector2d(0.0, -reach)};
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    double c[3];
+    const Eigen::Vector2d p = at + offsets[i];
+    if (!segment::ColourAt(image, p.x(), p.y(), c)) return false;
+    for (std::size_t channel = 0; channel < 3; ++channel) ring[channel][i] = c[channel];
+  }
+  double distance2 = 0.0;
+  for (std::size_t channel = 0; channel < 3; ++channel) {
+    std::sort(ring[channel].begin(), ring[channel].end());
+    const double d = colour[channel] - 0.5 * (ring[channel][1] + ring[channel][2]);
+    distance2 += (channel == 0 ? 1.0 : edge.chroma_weight) * d * d;
+  }
+  return distance2 >= edge.min_contrast * edge.min_contrast;
+}
+
+}  // namespace
+
 std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Vector2d& pixel_a,
                                                 double diameter_a, const double colour_a[3],
                                                 const Camera& b, const ImageView& image_b,
@@ -78,6 +105,15 @@ std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Ve
     }
     s += step;
     if (!q || !(expected > 0.0) || !in_hall(x) || !b.InImage(*q, 0.5 * expected)) continue;
+    // A start within half a radius of the ball's centre lies on the ball: of its hue, and apart
+    // from the ring the fit's rays end on (the middle two of 4 samples there, per channel).
+    double start[3];
+    if (!segment::ColourAt(image_b, q->x(), q->y(), start) ||
+        !SameHue(colour_a, start, o.min_chroma, o.max_hue_deg) ||
+        !StandsOut(image_b, *q, start, o.edge.reach * 0.5 * expected + o.edge.reach_margin_px,
+                   o.edge)) {
+      continue;
+    }
     ++fits;
     const auto e = segment::MeasureEdgeCentre(image_b, q->x(), q->y(), 0.5 * expected, o.edge);
     if (!e || !(e->minor_diameter > 0.0) ||
