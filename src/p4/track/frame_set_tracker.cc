@@ -650,7 +650,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     const bool missed_points =
         confirmed && confirmed->points.size() >= 2 &&
         (!last_taken_t_ || confirmed->points[confirmed->points.size() - 2].t > *last_taken_t_);
-    if (confirmed && (!took || missed_points)) {
+    const bool adopt = confirmed && (!took || missed_points);
+    if (adopt) {
       used.clear();
       AdoptTracklet(*confirmed, &result);
       adopted = confirmed->points.back().detections;
@@ -663,8 +664,19 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       used.clear();
       waiting_.push_back(*waits);
     }
+    // The track follows the tracklet's flight already: the points of it the filter refused (the
+    // first after a hit, before the coasting filter's gate grew) are rows all the same.
+    if (confirmed && !adopt && n >= 2) ReviseRefused(*confirmed, &result);
+  }
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
+  for (const Revision& r : result.revisions) {
+    if (t - r.t <= hold && std::find(taken_.begin(), taken_.end(), r.t) == taken_.end()) {
+      taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
+    }
   }
   if (result.state && result.state->measured) {
+    taken_.push_back(t);
     last_taken_t_ = t;
     if (!result.tentative && result.measurement && result.measurement->cameras >= 2) {
       fixes_.push_back(t);
@@ -752,6 +764,18 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
   result->new_track = true;
+}
+
+void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {
+  const auto& points = tracklet.points;
+  BallTracker replay(tracker_options_);
+  for (std::size_t i = tracklet.flight_start; i + 1 < points.size(); ++i) {
+    const TrackletPoint& p = points[i];
+    const auto state = replay.Step(p.t, p.measurement);
+    if (std::find(taken_.begin(), taken_.end(), p.t) == taken_.end() && state && state->measured) {
+      result->revisions.push_back({p.t, p.measurement, *state, p.detections});
+    }
+  }
 }
 
 int FrameSetTracker::SpotAt(int camera, const Eigen::Vector2d& pixel) const {

@@ -357,6 +357,10 @@ class FrameSetTracker {
   // A confirmed tracklet becomes the track: the filter replays its points; all but the last
   // become revisions of their time-stamps, the last is this time-stamp's state and measurement.
   void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result);
+  // A confirmed tracklet whose flight the track follows already (it took this time-stamp's
+  // measurement and the tracklet's last points): the points of that flight the filter refused
+  // (not in taken_) become revisions, their states from a filter replaying the flight.
+  void ReviseRefused(const Tracklet& tracklet, FrameSetResult* result);
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
   std::optional<Measurement> SingleView(const std::vector<Detection>& views,
@@ -439,6 +443,7 @@ class FrameSetTracker {
   };
   std::vector<WaitingView> waiting_;  // lone views whose rows wait for the smoother, oldest first
   std::deque<TimeNs> fixes_;          // the time-stamps of the hold whose two views the track took
+  std::deque<TimeNs> taken_;          // the time-stamps of the hold whose measurement it took
   std::function<TimeNs()> clock_;
 };
 

@@ -595,6 +595,48 @@ TEST_F(FrameSetTrackerTest, ATrackletThroughAHitStartsTheTrackOnTheNewFlight) {
   EXPECT_GE(after, 15);  // of 16
 }
 
+TEST_F(FrameSetTrackerTest, TheSetAHitsTrackRefusedBecomesARowOnceTheFlightIsConfirmed) {
+  // 60 sets a second: a track on a drive at 3 m/s, then a hit 14 ms before set 12 sends the
+  // ball back at 8 m/s and up. With a filter of 20 m/s^2 of unmodelled acceleration and a gate of
+  // 21, set 12 lies beyond the gate (22.3) and set 13, the filter's covariance grown by the
+  // coasting step, within it (20.1): the track refuses one set and follows the new flight
+  // (sports tuning 8 at 4.93 s, with the default filter). When the initiator confirms that
+  // flight, set 12 becomes a row of it.
+  const double hit = 12 / 60.0 - 0.014;
+  const auto ball = [&](int k) -> Eigen::Vector3d {
+    const auto before = [](double t) {
+      return Eigen::Vector3d(-0.8 + 3.0 * t, 0.1, 0.3 + 0.8 * t - 4.9 * t * t);
+    };
+    const double t = k / 60.0;
+    if (t <= hit) return before(t);
+    const double s = t - hit;
+    return before(hit) + Eigen::Vector3d(-8.0 * s, 0.3 * s, 6.0 * s - 4.9 * s * s);
+  };
+  FrameSetOptions options;
+  options.tracker.kalman.accel_sigma = 20.0;
+  options.tracker.gate_chi2 = 21.0;
+  FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+  std::map<TimeNs, Eigen::Vector3d> rows;  // measured states, revisions last
+  for (int k = 0; k < 20; ++k) {
+    const TimeNs t = FromSeconds(k / 60.0);
+    const auto r = tracker.Process(t, Frames(ball(k), k));
+    if (k == 12 || k == 13) {  // the case this test is about: refused, then taken
+      ASSERT_TRUE(r.state.has_value()) << k;
+      ASSERT_EQ(r.state->measured, k == 13) << k;
+      ASSERT_FALSE(r.new_track) << k;
+    }
+    if (r.state && r.state->measured && !r.tentative) rows[t] = r.state->position;
+    for (const Revision& revision : r.revisions) {
+      if (revision.state.measured) rows[revision.t] = revision.state.position;
+    }
+  }
+  for (int k = 8; k < 20; ++k) {
+    const auto row = rows.find(FromSeconds(k / 60.0));
+    ASSERT_NE(row, rows.end()) << k;
+    EXPECT_LT((row->second - ball(k)).norm(), 0.01) << k;
+  }
+}
+
 TEST_F(FrameSetTrackerTest, AStaticOrangeSpotIsPartOfTheHall) {
   // A ball-sized orange mark that both cameras see at one place (so it passes the epipolar check)
   // is a candidate at first, never a track, and dropped once it has not moved for static_frames
