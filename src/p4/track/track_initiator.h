@@ -15,6 +15,7 @@
 // World frame, metres, seconds (time-stamps in ns from the caller). Pure.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <span>
 #include <string>
