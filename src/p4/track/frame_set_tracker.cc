@@ -546,7 +546,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   const auto in_step = [&](int c) { return image_time(c) == t; };
   if (options_.search_epipolars && n >= 2 &&
-      SearchEpipolars(hypotheses, predicted, images, in_step, &candidates)) {
+      SearchEpipolars(hypotheses, predicted, predicted_covariance, images, in_step, &candidates)) {
     hypotheses = Hypotheses(candidates);
   }
   const bool confirming = options_.confirm_tracks;
@@ -937,6 +937,7 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
 
 bool FrameSetTracker::SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
                                       const std::optional<Eigen::Vector3d>& predicted,
+                                      const Eigen::Matrix3d& predicted_covariance,
                                       std::span<const std::optional<ImageView>> images,
                                       const std::function<bool(int)>& in_step,
                                       std::vector<std::vector<Detection>>* candidates) const {
@@ -996,7 +997,15 @@ bool FrameSetTracker::SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
             b, hit->pixel, hit->diameter_px,
             static_cast<int>(std::lround(M_PI / 4.0 * hit->diameter_px * hit->diameter_px)), false};
         view.observed = view.pixel;
+        // Far from the track's prediction (beyond 99 % of its covariance and a centimetre): a
+        // view for a new track only (Detection::outside), never a measurement of this one.
         view.outside = d.outside;
+        if (predicted) {
+          const Eigen::Vector3d off = hit->point - *predicted;
+          const Eigen::Matrix3d spread = predicted_covariance + 1e-4 * Eigen::Matrix3d::Identity();
+          view.outside = view.outside ||
+                         off.dot(spread.ldlt().solve(off)) > options_.lone_view_consistency_chi2;
+        }
         found[b].push_back(view);
       }
     }

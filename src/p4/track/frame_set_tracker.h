@@ -342,10 +342,13 @@ class FrameSetTracker {
   bool WholeFragments(const std::vector<Hypothesis>& hypotheses,
                       std::span<const std::optional<ImageView>> images,
                       std::vector<std::vector<Detection>>* candidates) const;
-  // search_epipolars: each find joins its camera's candidates. Returns whether any did (the
-  // hypotheses are then stale). `in_step(c)`: camera c's image is at the set's time.
+  // search_epipolars: each find joins its camera's candidates; one whose two views place the
+  // ball beyond 99 % of the prediction's covariance (plus a centimetre; lone_view_consistency_
+  // chi2) is `outside`: for a new track only. Returns whether any joined (the hypotheses are
+  // then stale). `in_step(c)`: camera c's image is at the set's time.
   bool SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
                        const std::optional<Eigen::Vector3d>& predicted,
+                       const Eigen::Matrix3d& predicted_covariance,
                        std::span<const std::optional<ImageView>> images,
                        const std::function<bool(int)>& in_step,
                        std::vector<std::vector<Detection>>* candidates) const;
