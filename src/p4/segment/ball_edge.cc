@@ -41,6 +41,11 @@ bool ColourAt(const ImageView& image, double x, double y, double out[3]) {
   return true;
 }
 
+double ColourDistance(const double* a, const double* b, double chroma_weight) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) +
+                   chroma_weight * ((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+}
+
 namespace {
 
 // Samples along a ray from (cx, cy): n colours (Y, U, V) at o.step_px apart. False when the
@@ -52,11 +57,6 @@ bool SampleRay(const ImageView& image, double cx, double cy, double ux, double u
     if (!ColourAt(image, cx + r * ux, cy + r * uy, colours + 3 * k)) return false;
   }
   return true;
-}
-
-double ColourDistance(const double* a, const double* b, double chroma_weight) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) +
-                   chroma_weight * ((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
 }
 
 // Distance along a sampled ray to the ball's edge; negative when the ray finds none.
@@ -132,13 +132,13 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     ux[static_cast<std::size_t>(r)] = std::cos(a), uy[static_cast<std::size_t>(r)] = std::sin(a);
   }
   EdgeCentre out;
-  double median[3];
   for (int iteration = 0; iteration < o.iterations; ++iteration) {
     // Every ray's colours; the background is the ring beyond the ball: per channel the median of
     // all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that
     // one differs from the ring (a line or a shadow across some rays' ends is not their
     // background).
     ring.clear();
+    double median[3];
     for (int r = 0; r < o.directions; ++r) {
       const auto j = static_cast<std::size_t>(r);
       sampled[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &colours[3 * n * j]);
@@ -242,10 +242,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       }
     }
   }
-  for (int channel = 0; channel < 3; ++channel) {
-    out.colour[channel] /= std::max(1, count);
-    out.ring[channel] = median[channel];
-  }
+  for (double& channel : out.colour) channel /= std::max(1, count);
   out.cx = cx, out.cy = cy;
   return out;
 }

@@ -54,14 +54,17 @@ struct EdgeCentre {
   int pairs = 0;             // opposite rays that agreed
   double residual_px = 0.0;  // RMS of their half-differences about the fit
   // The ball's colour (Y, U, V: the mean of the last rays' samples within half the minor
-  // radius of where they started) and the ring's beyond it (per channel the median).
+  // radius of where they started).
   double colour[3] = {0.0, 0.0, 0.0};
-  double ring[3] = {0.0, 0.0, 0.0};
 };
 
 // The colour (Y, U, V) at (x, y), bilinear: luma at full resolution, chroma from its
 // half-resolution samples. False outside the image.
 bool ColourAt(const ImageView& image, double x, double y, double out[3]);
+
+// The distance of two colours (Y, U, V) as the edge fit measures contrast: luma, and chroma
+// weighted by chroma_weight (squared).
+double ColourDistance(const double* a, const double* b, double chroma_weight);
 
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a
 // radius; `radius_px`: the ball's radius guess (half the region's major axis for a streak).

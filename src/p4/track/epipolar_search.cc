@@ -31,18 +31,10 @@ bool EpipolarSearchOptions::IsValid(std::string* error) const {
   return edge.IsValid(error);
 }
 
-bool SameHue(const double colour_a[3], const double colour_b[3], double min_chroma,
-             double max_hue_deg) {
-  const double ua = colour_a[1] - 128.0, va = colour_a[2] - 128.0;
-  const double ub = colour_b[1] - 128.0, vb = colour_b[2] - 128.0;
-  const double ca = std::hypot(ua, va), cb = std::hypot(ub, vb);
-  if (ca < min_chroma) return cb < 2.0 * min_chroma;  // grey wants grey
-  if (cb < min_chroma) return false;
-  const double cosine = (ua * ub + va * vb) / (ca * cb);
-  return cosine >= std::cos(max_hue_deg * M_PI / 180.0);
-}
-
 namespace {
+
+// The distance of a colour's (U, V) from grey.
+double Chroma(const double colour[3]) { return std::hypot(colour[1] - 128.0, colour[2] - 128.0); }
 
 // Whether `colour` (at `at`) differs from the ring `reach` px around it by the edge fit's
 // contrast.
@@ -58,22 +50,32 @@ bool StandsOut(const ImageView& image, const Eigen::Vector2d& at, const double c
     if (!segment::ColourAt(image, p.x(), p.y(), c)) return false;
     for (std::size_t channel = 0; channel < 3; ++channel) ring[channel][i] = c[channel];
   }
-  double distance2 = 0.0;
+  double middle[3];
   for (std::size_t channel = 0; channel < 3; ++channel) {
     std::sort(ring[channel].begin(), ring[channel].end());
-    const double d = colour[channel] - 0.5 * (ring[channel][1] + ring[channel][2]);
-    distance2 += (channel == 0 ? 1.0 : edge.chroma_weight) * d * d;
+    middle[channel] = 0.5 * (ring[channel][1] + ring[channel][2]);
   }
-  return distance2 >= edge.min_contrast * edge.min_contrast;
+  return segment::ColourDistance(colour, middle, edge.chroma_weight) >= edge.min_contrast;
 }
 
 }  // namespace
+
+bool SameHue(const double colour_a[3], const double colour_b[3], double min_chroma,
+             double max_hue_deg) {
+  const double ua = colour_a[1] - 128.0, va = colour_a[2] - 128.0;
+  const double ub = colour_b[1] - 128.0, vb = colour_b[2] - 128.0;
+  const double ca = Chroma(colour_a), cb = Chroma(colour_b);
+  if (ca < min_chroma) return cb < 2.0 * min_chroma;  // grey wants grey
+  if (cb < min_chroma) return false;
+  const double cosine = (ua * ub + va * vb) / (ca * cb);
+  return cosine >= std::cos(max_hue_deg * M_PI / 180.0);
+}
 
 std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Vector2d& pixel_a,
                                                 double diameter_a, const double colour_a[3],
                                                 const Camera& b, const ImageView& image_b,
                                                 const EpipolarSearchOptions& o) {
-  if (!o.grey_balls && std::hypot(colour_a[1] - 128.0, colour_a[2] - 128.0) < o.min_chroma) {
+  if (!o.grey_balls && Chroma(colour_a) < o.min_chroma) {
     return std::nullopt;
   }
   const auto placed =

@@ -96,6 +96,12 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
   }
   tracker_ = BallTracker(tracker_options_);
   options_.segment.mask = classes.MaskOf("ball");
+  // The epipolar search's hall and ball are the tracker's.
+  options_.epipolar.half_length = options_.hall_half_size.x();
+  options_.epipolar.half_width = options_.hall_half_size.y();
+  options_.epipolar.max_z = options_.hall_half_size.z();
+  options_.epipolar.floor_z = table::kFloorZ - 0.02;
+  options_.epipolar.ball_radius = table::kBallRadius;
   if (options.threads > 1 && rig.size() > 1) {
     pool_ = std::make_unique<CameraPool>(std::min(options.threads, rig.size()));
   }
@@ -113,14 +119,32 @@ bool EdgeGivesDiameter(const segment::EdgeCentre& e, double max_elongation) {
   return e.minor_diameter > 0.0 && e.major_diameter <= max_elongation * e.minor_diameter;
 }
 
-// Camera c's view of a faint streak: its middle, the ball's diameter given to it.
-Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter) {
-  Detection d{c,
-              {hit.cx, hit.cy},
-              diameter,
-              static_cast<int>(std::lround(M_PI / 4.0 * diameter * diameter)),
+// Steps `filter` through the tracklet's points [first, last); each measured state whose
+// time-stamp `revise` accepts becomes a revision of it.
+void ReplayPoints(const Tracklet& tracklet, std::size_t first, std::size_t last,
+                  BallTracker* filter, const std::function<bool(TimeNs)>& revise,
+                  FrameSetResult* result) {
+  for (std::size_t i = first; i < last; ++i) {
+    const TrackletPoint& p = tracklet.points[i];
+    const auto state = filter->Step(p.t, p.measurement);
+    if (state && state->measured && revise(p.t)) {
+      result->revisions.push_back({p.t, p.measurement, *state, p.detections});
+    }
+  }
+}
+
+// Camera c's view of a ball of `diameter` px centred at `pixel` (as seen: at the set's time), its
+// area the disc's.
+Detection DiscView(int c, const Eigen::Vector2d& pixel, double diameter) {
+  Detection d{c, pixel, diameter, static_cast<int>(std::lround(M_PI / 4.0 * diameter * diameter)),
               false};
   d.observed = d.pixel;
+  return d;
+}
+
+// Camera c's view of a faint streak: its middle, the ball's diameter given to it.
+Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter) {
+  Detection d = DiscView(c, {hit.cx, hit.cy}, diameter);
   d.streak = true;
   return d;
 }
@@ -739,27 +763,16 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   const std::size_t start = rig_.size() >= 2 ? tracklet.flight_start : 0;
   std::size_t first = 0;
   while (first < start && last_taken_t_ && points[first].t <= *last_taken_t_) ++first;
+  const auto all = [](TimeNs) { return true; };
   if (start >= first + 2) {
     BallTracker before(tracker_options_);
-    for (std::size_t i = first; i < start; ++i) {
-      const TrackletPoint& p = points[i];
-      const auto state = before.Step(p.t, p.measurement);
-      if (state && state->measured) {
-        result->revisions.push_back({p.t, p.measurement, *state, p.detections});
-      }
-    }
+    ReplayPoints(tracklet, first, start, &before, all, result);
   }
   // The flight it ends with: the filter replays it; all but its last point are revisions.
   tracker_ = BallTracker(tracker_options_);
-  std::optional<TrackedState> last;
-  for (std::size_t i = start; i < points.size(); ++i) {
-    const TrackletPoint& p = points[i];
-    last = tracker_.Step(p.t, p.measurement);
-    if (i + 1 == points.size()) break;
-    if (last && last->measured) {
-      result->revisions.push_back({p.t, p.measurement, *last, p.detections});
-    }
-  }
+  ReplayPoints(tracklet, start, points.size() - 1, &tracker_, all, result);
+  const std::optional<TrackedState> last =
+      tracker_.Step(points.back().t, points.back().measurement);
   result->state = last;
   result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
@@ -767,15 +780,10 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
 }
 
 void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {
-  const auto& points = tracklet.points;
   BallTracker replay(tracker_options_);
-  for (std::size_t i = tracklet.flight_start; i + 1 < points.size(); ++i) {
-    const TrackletPoint& p = points[i];
-    const auto state = replay.Step(p.t, p.measurement);
-    if (std::find(taken_.begin(), taken_.end(), p.t) == taken_.end() && state && state->measured) {
-      result->revisions.push_back({p.t, p.measurement, *state, p.detections});
-    }
-  }
+  ReplayPoints(
+      tracklet, tracklet.flight_start, tracklet.points.size() - 1, &replay,
+      [&](TimeNs t) { return std::find(taken_.begin(), taken_.end(), t) == taken_.end(); }, result);
 }
 
 int FrameSetTracker::SpotAt(int camera, const Eigen::Vector2d& pixel) const {
@@ -946,12 +954,7 @@ bool FrameSetTracker::SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
                                              options_.max_prediction_distance);
   });
   if (placed) return false;
-  EpipolarSearchOptions search = options_.epipolar;
-  search.half_length = options_.hall_half_size.x();
-  search.half_width = options_.hall_half_size.y();
-  search.max_z = options_.hall_half_size.z();
-  search.floor_z = table::kFloorZ - 0.02;
-  search.ball_radius = table::kBallRadius;
+  const EpipolarSearchOptions& search = options_.epipolar;
   const int n = rig_.size();
   const auto has_image = [&](int c) {
     return c < static_cast<int>(images.size()) && images[c] && in_step(c);
@@ -993,10 +996,7 @@ bool FrameSetTracker::SearchEpipolars(const std::vector<Hypothesis>& hypotheses,
             std::any_of(found[b].begin(), found[b].end(), near)) {
           continue;
         }
-        Detection view{
-            b, hit->pixel, hit->diameter_px,
-            static_cast<int>(std::lround(M_PI / 4.0 * hit->diameter_px * hit->diameter_px)), false};
-        view.observed = view.pixel;
+        Detection view = DiscView(b, hit->pixel, hit->diameter_px);
         // Far from the track's prediction (beyond 99 % of its covariance and a centimetre): a
         // view for a new track only (Detection::outside), never a measurement of this one.
         view.outside = d.outside;

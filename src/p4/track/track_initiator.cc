@@ -107,6 +107,11 @@ Eigen::VectorXd FlightResiduals(std::span<const TrackletPoint> points, const Noi
   return scaled.rowwise().norm();
 }
 
+// Whether scaled residuals have an RMS within 1.
+bool WithinOne(const Eigen::VectorXd& residuals) {
+  return residuals.squaredNorm() <= static_cast<double>(residuals.size());
+}
+
 }  // namespace
 
 TrackInitiator::Gate TrackInitiator::Predict(const Tracklet& tracklet, TimeNs t) const {
@@ -141,9 +146,7 @@ std::size_t TrackInitiator::FlightStart(const Tracklet& tracklet) const {
   // many points after it dilute.
   while (first > 0) {
     const Eigen::VectorXd residuals = Residuals(points.subspan(first - 1));
-    if (residuals(0) > 1.0 || residuals.squaredNorm() > static_cast<double>(residuals.size())) {
-      break;
-    }
+    if (residuals(0) > 1.0 || !WithinOne(residuals)) break;
     --first;
   }
   return first;
@@ -157,9 +160,7 @@ Eigen::VectorXd TrackInitiator::Residuals(std::span<const TrackletPoint> points)
 }
 
 bool TrackInitiator::FitsOneFlight(std::span<const TrackletPoint> points) const {
-  // RMS within 1.
-  const Eigen::VectorXd residuals = Residuals(points);
-  return residuals.squaredNorm() <= static_cast<double>(residuals.size());
+  return WithinOne(Residuals(points));
 }
 
 bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
