@@ -42,11 +42,12 @@ struct TrackInitiatorOptions {
   // camera's depth from the diameter alone wanders by more than min_travel).
   double min_travel_sigmas = 4.0;
   // A slow ball (a serve toss near its top) travels less, but falls as nothing else in the hall
-  // does: a tracklet spanning fall_span_s whose heights fit a parabola with gravity's curvature
-  // (within fall_tolerance of g, residuals within 2 sigmas of the measurements) and has
-  // fall_points points at least is confirmed too: a parabola has 3 parameters, and through 4
-  // points of a hand or a shirt's edge (a 25 fps camera's 0.1 s) one with g's curvature is found
-  // by chance.
+  // does: a tracklet spanning fall_span_s whose points all fit one flight (fit_tolerance, as the
+  // newest must), whose heights fit a parabola with gravity's curvature (within fall_tolerance
+  // of g, residuals within 2 sigmas of the measurements) and has fall_points points at least is
+  // confirmed too (the heights of a shirt's edge, its pieces jumping sideways, may rise and fall
+  // with g's curvature by chance): a parabola has 3 parameters, and through 4 points of a hand
+  // or a shirt's edge (a 25 fps camera's 0.1 s) one with g's curvature is found by chance.
   double fall_span_s = 0.1;
   double fall_tolerance = 0.3;
   int fall_points = 6;

@@ -332,6 +332,24 @@ TEST(TrackInitiator, ASlantedSlowRiseIsNoToss) {
   EXPECT_TRUE(ConfirmedRise(1.4, false, 0.0, 5).has_value());
 }
 
+// The top edge of a player's ball-coloured shorts, paired across two cameras (sports tuning scene
+// 23 at 5.08-5.18 s, as measured): the pieces the colour split off jump by 5-10 cm sideways while
+// their heights, by chance, rise and fall with nearly gravity's curvature, and the newest four lie
+// on one line. Its heights alone would confirm it as a toss near its top; no flight passes through
+// all its points (the sideways jumps), and a ball's fall is a flight in all three axes.
+TEST(TrackInitiator, AShirtsEdgeWhoseHeightsHappenToFallIsNoToss) {
+  const double ts[] = {5.075, 5.1, 5.1083, 5.1167, 5.125, 5.1333, 5.15, 5.1667, 5.1833};
+  const Eigen::Vector3d ps[] = {
+      {-2.280, 0.449, 0.141}, {-2.221, 0.375, 0.167}, {-2.219, 0.384, 0.168},
+      {-2.210, 0.386, 0.172}, {-2.211, 0.389, 0.169}, {-2.248, 0.443, 0.151},
+      {-2.262, 0.494, 0.151}, {-2.246, 0.500, 0.157}, {-2.245, 0.508, 0.159}};
+  TrackInitiator initiator;
+  for (int k = 0; k < 9; ++k) {
+    const TrackletPoint p = PointAt(ts[k], ps[k], 0.0048, 1);
+    EXPECT_FALSE(initiator.Push(p.t, std::vector<TrackletPoint>{p}).has_value()) << ts[k];
+  }
+}
+
 TEST(TrackInitiator, AJerkyPathFitsNoFlight) {
   // At 25 sets per second, 1 cm of noise: a speck on a player that jumps on, stops and jumps
   // again, at a constant height. Each point lies within the wide gate of the two before it, and
