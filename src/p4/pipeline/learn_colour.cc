@@ -65,6 +65,9 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   // Nor looked for along another view's epipolar line by its edge alone: the colour is learnt
   // from what the background mask outlines.
   tracking.search_epipolars = false;
+  // A pair whose point a third camera sees in a region of another size is no ball here: that
+  // region is most often the body whose pieces the pair took, and the samples must be pure.
+  tracking.misfit_view_rejects_pair = true;
   // Its window stays on what it finds: everything that moves is a region of some size, and a
   // whole-image search after every hit lets the colour-free tracker jump to arms and shirts
   // (sports tuning seed 23: the learnt colour took 55 % of the moving pixels instead of 6 %).

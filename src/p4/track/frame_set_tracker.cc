@@ -826,6 +826,12 @@ void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
   std::erase_if(spots, [](const StaticSpot& s) { return s.count <= 0; });
 }
 
+bool FrameSetTracker::SizeFits(double diameter_px, double expected_px) const {
+  if (!(expected_px > 0.0)) return false;
+  const double ratio = diameter_px / expected_px;
+  return ratio <= options_.max_size_ratio && ratio >= options_.min_fragment_ratio;
+}
+
 std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
     const std::vector<std::vector<Detection>>& candidates) const {
   const int n = rig_.size();
@@ -846,7 +852,9 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           if (!estimate) continue;
           Hypothesis h;
           h.members = {{i, a}, {j, b}};
-          // Other views: the candidate nearest to the point's projection, if near enough.
+          // Other views: the candidate nearest to the point's projection, if near enough and
+          // of a size the ball may have there (misfit_view_rejects_pair).
+          bool misfit = false;
           for (int k = 0; k < n; ++k) {
             if (k == i || k == j) continue;
             const auto px = rig_.cameras[k].Project(estimate->point);
@@ -857,11 +865,15 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
               const double d = (candidates[k][m].pixel - *px).norm();
               if (d < best_d) best_d = d, best_k = m;
             }
-            if (best_k >= 0) {
+            if (best_k >= 0 && !SizeFits(candidates[k][best_k].diameter_px,
+                                         ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
+              misfit = true;
+            } else if (best_k >= 0) {
               h.members.emplace_back(k, best_k);
               observations.push_back({k, candidates[k][best_k].pixel});
             }
           }
+          if (misfit && options_.misfit_view_rejects_pair) continue;
           if (h.members.size() > 2) {
             estimate = TriangulateObservations(rig_.cameras, observations);
             if (!estimate) continue;
@@ -880,12 +892,11 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           bool sized = true;
           for (const auto& [c, m] : h.members) {
             const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
-            const double ratio = candidates[c][m].diameter_px / std::max(1e-6, expected);
-            if (expected <= 0.0 || ratio > options_.max_size_ratio ||
-                ratio < options_.min_fragment_ratio) {
+            if (!SizeFits(candidates[c][m].diameter_px, expected)) {
               sized = false;
               break;
             }
+            const double ratio = candidates[c][m].diameter_px / expected;
             // Smaller than a half-hidden ball: the part of a shaded ball that the tables took.
             if (ratio < options_.min_size_ratio) h.fragment = true;
             h.size_misfit += std::abs(std::log(ratio));

@@ -48,6 +48,12 @@ struct FrameSetOptions {
   int static_frames = 30;
   double epipolar_px = 4.0;      // max distance of a candidate from another view's epipolar line
   double reprojection_px = 5.0;  // max reprojection error of an agreeing view
+  // A third camera's region nearest where a pair of views places the ball (within
+  // reprojection_px) but not of the ball's size there (max_size_ratio, min_fragment_ratio) is no
+  // view of it: the pair stands without it (the ball before a shirt of its colour, merged with
+  // it), or, when this is set, the pair is refused (the colour learner, whose candidates are
+  // whatever moves: there such a region is most often the body the pair's pieces belong to).
+  bool misfit_view_rejects_pair = false;
   // Each agreeing view's ball diameter within this factor of the one expected at the point
   // found (down to 1 / factor - 0.25: a ball half hidden looks smaller).
   double max_size_ratio = 1.6;
@@ -331,6 +337,9 @@ class FrameSetTracker {
     double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
     bool fragment = false;     // a view below min_size_ratio (see there)
   };
+  // Whether a view of diameter_px may be the ball where expected_px is its expected diameter
+  // (max_size_ratio, min_fragment_ratio).
+  bool SizeFits(double diameter_px, double expected_px) const;
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
   // A fragment's small views measured again by the ball's edge at the size the hypothesis
