@@ -20,6 +20,11 @@ bool TrackerOptions::IsValid(std::string* error) const {
     if (error) *error = "bounce restitution must be in (0, 1]";
     return false;
   }
+  if (!(net_speed_kept >= -1.0 && net_speed_kept <= 1.0) || !(net_speed_sigma >= 0.0) ||
+      !(net_side_sigma >= 0.0)) {
+    if (error) *error = "net_speed_kept must be in [-1, 1], the net's sigmas >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -27,6 +32,35 @@ BallTracker::BallTracker(const TrackerOptions& options)
     : options_(options), filter_(options.kalman) {}
 
 void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& o) {
+  const Vector6d& x = filter->state();
+  const double r = o.ball_radius;
+  // The ball meets the net's plane (x = 0) when its centre comes within r of it, from its side.
+  if (o.net_model && std::abs(x(0)) > r && x(0) * x(3) < 0.0) {
+    const double contact = (std::abs(x(0)) - r) / std::abs(x(3));  // s, drag neglected
+    if (contact <= dt) {
+      KalmanFilter at = *filter;
+      PredictWithTable(&at, contact, o);
+      const Vector6d& s = at.state();
+      if (s(2) >= 0.0 && s(2) < table::kNetHeight + r && std::abs(s(1)) <= table::kNetHalfLength &&
+          s(0) * x(0) > 0.0) {
+        const double across = std::abs(s(3));
+        Matrix6d d = Matrix6d::Identity();
+        d.diagonal().tail<3>() = Eigen::Vector3d(o.net_speed_kept, 0.5, 0.5);
+        Matrix6d unknown = Matrix6d::Zero();
+        unknown.diagonal().tail<3>() = Eigen::Vector3d(std::max(1.0, o.net_speed_sigma * across),
+                                                       o.net_side_sigma, o.net_side_sigma)
+                                           .cwiseAbs2();
+        at.Apply(d, unknown);
+        PredictWithTable(&at, std::max(dt - contact, 1e-9), o);
+        *filter = at;
+        return;
+      }
+    }
+  }
+  PredictWithTable(filter, dt, o);
+}
+
+void BallTracker::PredictWithTable(KalmanFilter* filter, double dt, const TrackerOptions& o) {
   const Vector6d& x = filter->state();
   const double z0 = x(2) - o.ball_radius, vz = x(5), g = o.kalman.gravity;
   double hit = -1.0;

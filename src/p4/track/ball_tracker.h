@@ -51,6 +51,17 @@ struct TrackerOptions {
   bool bounce_model = true;  // reflect at the table in the prediction
   double bounce_restitution = 0.88;
   double bounce_friction = 0.25;
+  // The net in the prediction: a path whose ball meets the net (its centre within ball_radius of
+  // the net's plane, below the top of the net plus the radius, between the posts, above the
+  // table) is stopped there, and what it does next is not known (it drops, rolls over the tape
+  // or comes back): its velocity across the net keeps net_speed_kept of what it was, known to
+  // net_speed_sigma of it (at least 1 m/s), the other two axes half theirs, known to
+  // net_side_sigma. The measurements after the net then pass the gate; without it the filter
+  // coasted on through the net and refused them.
+  bool net_model = true;
+  double net_speed_kept = 0.25;
+  double net_speed_sigma = 0.6;
+  double net_side_sigma = 1.5;  // m/s
   double ball_radius = 0.02;
   double init_velocity_sigma = 3.0;  // m/s, of a velocity from two measurements
   double sound_residual_px = 2.0;    // a multi-camera measurement this consistent may restart
@@ -98,8 +109,10 @@ class BallTracker {
  private:
   // Whether the measurements taken over the last slow_window_s move slowly without falling.
   bool SlowAndNotFalling() const;
-  // Predicts the filter to dt ahead, with the table bounce.
+  // Predicts the filter to dt ahead, with the table bounce and the net.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
+  // Predicts the filter to dt ahead, with the table bounce only.
+  static void PredictWithTable(KalmanFilter* filter, double dt, const TrackerOptions& options);
   // A copy of the filter predicted to t (with the table bounce), with a track.
   std::optional<KalmanFilter> PredictedFilter(TimeNs t) const;
   // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.

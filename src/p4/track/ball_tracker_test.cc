@@ -148,6 +148,60 @@ TEST(BallTracker, AHitRestartsTheTrackWithoutLosingIt) {
   EXPECT_EQ(tracker.restarts(), 2);
 }
 
+// Drives into the net at 14 m/s (the simulator's soft net and its cord), measured at 120 per
+// second, the track kept by the caller (no restart on a refused measurement, as with
+// confirmation): one into the net's face (the ball drops off it, coming back at 2 m/s), one that
+// clips the cord and rolls over it. With the net in the prediction the sets after the contact pass
+// the gate and the track follows the ball; without, the filter coasts on at full speed and
+// refuses them until it ends.
+TEST(BallTracker, ABallIntoTheNetIsFollowedAsItDropsOffItOrRollsOver) {
+  for (const double height : {0.12, 0.17}) {
+    sim::BallState start;
+    start.position = Eigen::Vector3d(-0.9, 0.1, height);
+    start.velocity = Eigen::Vector3d(14.0, 0.0, 0.3);
+    const auto flight = Flight(start, 0.3, 120.0);
+    // The first set after the contact: the ball slowed down by more than half.
+    std::size_t first_after = 1;
+    while (first_after < flight.size() &&
+           flight[first_after].p.x() - flight[first_after - 1].p.x() > 0.5 * 14.0 / 120.0) {
+      ++first_after;
+    }
+    ASSERT_LT(first_after, flight.size() - 20) << height;
+    ASSERT_GT(flight[first_after].p.x(), -0.05) << height;  // at the net
+    // Into the face it drops on its side; over the cord it ends on the other.
+    EXPECT_EQ(flight.back().p.x() > 0.0, height > 0.15) << height;
+    for (const bool net : {true, false}) {
+      TrackerOptions options;
+      options.restart_on_refusal = false;
+      options.net_model = net;
+      BallTracker tracker(options);
+      std::mt19937 rng(5);
+      std::normal_distribution<double> noise(0.0, 0.002);
+      int after = 0, measured_after = 0;
+      double worst = 0.0;
+      for (std::size_t k = 0; k < flight.size(); ++k) {
+        const Eigen::Vector3d p = flight[k].p + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+        const auto state = tracker.Step(flight[k].t, Measure(p, 0.002));
+        if (k < first_after) {
+          ASSERT_TRUE(state && state->measured) << height << " " << k;
+          continue;
+        }
+        ++after;
+        if (state && state->measured) {
+          ++measured_after;
+          worst = std::max(worst, (state->position - flight[k].p).norm());
+        }
+      }
+      if (net) {
+        EXPECT_EQ(measured_after, after) << height;
+        EXPECT_LT(worst, 0.01) << height;
+      } else {
+        EXPECT_LT(measured_after, after / 2) << height;
+      }
+    }
+  }
+}
+
 TEST(BallTracker, TheTrackEndsAfterTheCoastTime) {
   BallTracker tracker;
   const double dt = 1.0 / 120.0;
