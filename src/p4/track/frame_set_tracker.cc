@@ -387,8 +387,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     const auto holds_ball = [&] {
       for (int k = 0; k < found; ++k) {
         if (IsStaticSpot(c, {region_of(k).cx, region_of(k).cy})) continue;
-        const double ratio = region_of(k).minor_diameter / std::max(1e-6, expected);
-        if (ratio >= options_.min_fragment_ratio && ratio <= options_.max_size_ratio) return true;
+        if (SizeFits(region_of(k).minor_diameter, expected)) return true;
       }
       return false;
     };
