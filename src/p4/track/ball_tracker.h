@@ -3,6 +3,8 @@
 // without one with its prediction. The paper's heuristics, done better:
 // - table bounce: the prediction reflects at the table (z = ball radius inside the outline) at
 //   the exact crossing time with a restitution, instead of flipping vz after the fact;
+// - the net (beyond the paper): a predicted path that meets it stops there, its velocity then
+//   known only loosely (net_model);
 // - hit (and any sudden change): a measurement far from the prediction is gated out; the track
 //   restarts from it at once when it is a sound multi-camera measurement, or after a second one
 //   that agrees with it, with the velocity they imply;
@@ -113,7 +115,7 @@ class BallTracker {
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
   // Predicts the filter to dt ahead, with the table bounce only.
   static void PredictWithTable(KalmanFilter* filter, double dt, const TrackerOptions& options);
-  // A copy of the filter predicted to t (with the table bounce), with a track.
+  // A copy of the filter predicted to t (with the table bounce and the net), with a track.
   std::optional<KalmanFilter> PredictedFilter(TimeNs t) const;
   // A new track from a measurement and a velocity; Began() does the bookkeeping of any start.
   struct Velocity {

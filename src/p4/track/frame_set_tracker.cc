@@ -864,13 +864,14 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
               const double d = (candidates[k][m].pixel - *px).norm();
               if (d < best_d) best_d = d, best_k = m;
             }
-            if (best_k >= 0 && !SizeFits(candidates[k][best_k].diameter_px,
-                                         ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
+            if (best_k < 0) continue;
+            if (!SizeFits(candidates[k][best_k].diameter_px,
+                          ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
               misfit = true;
-            } else if (best_k >= 0) {
-              h.members.emplace_back(k, best_k);
-              observations.push_back({k, candidates[k][best_k].pixel});
+              continue;
             }
+            h.members.emplace_back(k, best_k);
+            observations.push_back({k, candidates[k][best_k].pixel});
           }
           if (misfit && options_.misfit_view_rejects_pair) continue;
           if (h.members.size() > 2) {

@@ -197,12 +197,8 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
       travel.head<2>().norm() <= options_.toss_max_lean * travel.z()) {
     return true;
   }
-  // Falling: z = a + b t + c t^2 by least squares, c against -g/2. A ball's fall is a flight
-  // in all three axes: every point lies on one (heights that rise and fall by chance, of pieces
-  // of a shirt's edge jumping sideways, fit gravity's curvature too).
-  if (span < options_.fall_span_s || n < options_.fall_points || !FitsOneFlight(points)) {
-    return false;
-  }
+  // Falling: z = a + b t + c t^2 by least squares, c against -g/2.
+  if (span < options_.fall_span_s || n < options_.fall_points) return false;
   Eigen::MatrixXd a(points.size(), 3);
   Eigen::VectorXd z(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -220,8 +216,10 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
   }
   const Eigen::Matrix3d normal = a.transpose() * a;
   const double curvature_sigma = sigma_z * std::sqrt(std::max(0.0, normal.inverse()(2, 2)));
+  // A ball's fall is a flight in all three axes: every point lies on one (heights that rise and
+  // fall by chance, of pieces of a shirt's edge jumping sideways, fit gravity's curvature too).
   return std::abs(fit(2) + half_g) <= options_.fall_tolerance * half_g && rms <= 2.0 * sigma_z &&
-         curvature_sigma <= options_.fall_max_curvature_sigma;
+         curvature_sigma <= options_.fall_max_curvature_sigma && FitsOneFlight(points);
 }
 
 std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletPoint> candidates) {
