@@ -39,6 +39,7 @@ struct LinePoint {
   double s = 0.0;  // b's stamp
   Eigen::Vector3d line = Eigen::Vector3d::Zero();
   double row = 0.0;  // b's real pixel row
+  int track = 0;     // which of b's tracks
 };
 
 // The reference's position at world time t on `track`, interpolated through the (up to) three
@@ -174,11 +175,15 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
   double weighted_squares = 0.0;
   int used = 0;
   bool fit_rate = false;
+  // Each of b's tracks' share of the gradient (its points' errors are alike: one ball, one
+  // background, one lean of its lit side), for the offset's sigma below.
+  std::vector<Eigen::Vector2d> per_track;
   for (int iteration = 0; iteration < 30; ++iteration) {
     Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
     Eigen::Vector2d g = Eigen::Vector2d::Zero();
     weighted_squares = 0.0;
     used = 0;
+    per_track.clear();
     double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
     for (const LinePoint& p : points) {
       const auto l = Linearise(ref, p, offset + rate * p.s, options);
@@ -189,6 +194,10 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
       weighted_squares += l->weight * l->r * l->r;
       ++used;
       s_min = std::min(s_min, p.s), s_max = std::max(s_max, p.s);
+      if (static_cast<int>(per_track.size()) <= p.track) {
+        per_track.resize(static_cast<std::size_t>(p.track) + 1, Eigen::Vector2d::Zero());
+      }
+      per_track[static_cast<std::size_t>(p.track)] += l->weight * j * l->r;
     }
     if (used < 3) break;
     fit_rate = s_max - s_min >= options.min_span_for_rate_s;
@@ -216,6 +225,27 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
     const double variance = weighted_squares / (used - parameters);
     const double inverse = fit_rate ? normal.inverse()(0, 0) : 1.0 / normal(0, 0);
     result.sigma_s = std::sqrt(std::max(0.0, variance * inverse));
+    // The points' errors are not independent: along one of b's tracks they share its lean
+    // (the lit half, the encoder's chroma) and its blur. The sandwich over the tracks (each
+    // track's gradient share one sample) holds that; the larger of the two is the sigma.
+    int tracks = 0;
+    Eigen::Matrix2d meat = Eigen::Matrix2d::Zero();
+    for (const Eigen::Vector2d& score : per_track) {
+      if (score.isZero()) continue;
+      meat += score * score.transpose();
+      ++tracks;
+    }
+    if (tracks > parameters) {
+      const double correction = static_cast<double>(tracks) / (tracks - parameters);
+      double clustered = 0.0;
+      if (fit_rate) {
+        const Eigen::Matrix2d bread = normal.inverse();
+        clustered = (bread * meat * bread)(0, 0);
+      } else {
+        clustered = meat(0, 0) / (normal(0, 0) * normal(0, 0));
+      }
+      result.sigma_s = std::max(result.sigma_s, std::sqrt(std::max(0.0, correction * clustered)));
+    }
   }
   return result;
 }
@@ -329,9 +359,9 @@ OffsetResult FindOffset(const Camera& reference, const std::vector<Track2d>& ref
   OffsetResult result;
   const std::vector<IdealTrack> ref = ToIdeal(reference, reference_tracks);
   std::vector<LinePoint> points;
-  for (const Track2d& track : b_tracks) {
-    for (const TrackPoint& p : track.points) {
-      points.push_back({p.t, EpipolarLine(b, p.pixel, reference), p.pixel.y()});
+  for (int k = 0; k < static_cast<int>(b_tracks.size()); ++k) {
+    for (const TrackPoint& p : b_tracks[k].points) {
+      points.push_back({p.t, EpipolarLine(b, p.pixel, reference), p.pixel.y(), k});
     }
   }
   if (ref.empty() || points.empty()) {

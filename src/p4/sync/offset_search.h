@@ -11,7 +11,9 @@
 //   2. Fine: the offset (and, over long recordings, the rate) that minimises the robust sum of
 //      epipolar distances between b's points and the reference's track interpolated at their
 //      world times (iteratively reweighted Gauss-Newton), with its standard deviation from the
-//      residuals.
+//      residuals: the larger of the points' own and that of b's tracks taken as the samples (a
+//      track's points share its lean, the lit half and the background behind it, so hundreds of
+//      points of a few flights know the offset only as well as those flights do).
 // The fine fit runs from each of the highest coarse peaks; the offset where most points agree
 // wins; with fit_line_times a last fit adds both cameras' line times (rows read one after
 // another): b's point at row v was exposed at offset + rate * (s + L_b v), the reference's point
@@ -71,7 +73,7 @@ struct OffsetResult {
   double rate = 1.0;      // world seconds per second of b's clock
   bool rate_fitted = false;
   bool in_step = false;     // the offset found was within in_step_sigmas of 0: taken as 0
-  double sigma_s = 0.0;     // standard deviation of the offset
+  double sigma_s = 0.0;     // standard deviation of the offset (b's tracks as the samples)
   int agreements = 0;       // b's points within inlier_px at the offset found
   int points = 0;           // b's points that could be compared (the reference's track there)
   double rms_px = 0.0;      // of the agreeing points' epipolar distances

@@ -33,6 +33,14 @@ class Rally {
       direction = -direction;
     }
   }
+  // Which flight the ball is in at world time t (-1 between flights).
+  int FlightAt(double t) const {
+    for (int i = 0; i < static_cast<int>(flights_.size()); ++i) {
+      const Flight& f = flights_[static_cast<std::size_t>(i)];
+      if (t >= f.t0 && t <= f.t0 + f.duration) return i;
+    }
+    return -1;
+  }
   // Where the ball is at world time t (nullopt between flights).
   std::optional<Eigen::Vector3d> At(double t) const {
     for (const Flight& f : flights_) {
@@ -64,6 +72,9 @@ struct Recording {
   int false_candidates = 1;                     // per frame, anywhere
   bool lamp = true;                             // a static candidate every frame
   double line_time_s = 0.0;                     // rolling shutter: each row this much later
+  // Each flight's views lean by their own constant 2D offset (its sigma per axis, px): the lit
+  // half, the background behind it, the encoder's chroma, alike along one flight.
+  double lean_px = 0.0;
 };
 
 // The camera's frames (stamps in its own clock) with the ball's pixel among the candidates.
@@ -89,7 +100,17 @@ inline std::vector<FrameCandidates> Record(const Camera& camera, const Rally& ra
       if (!seen) break;
       row = seen->y();
     }
-    if (seen) frame.pixels.push_back(*seen + Eigen::Vector2d(noise(rng), noise(rng)));
+    if (seen) {
+      Eigen::Vector2d lean = Eigen::Vector2d::Zero();
+      if (r.lean_px > 0.0) {
+        // Drawn from the flight's index, so that every frame of a flight leans alike.
+        std::mt19937_64 flight_rng(
+            seed * 7919 + static_cast<uint64_t>(rally.FlightAt(r.offset_s + rate * stamp) + 1));
+        std::normal_distribution<double> lean_noise(0.0, r.lean_px);
+        lean = {lean_noise(flight_rng), lean_noise(flight_rng)};
+      }
+      frame.pixels.push_back(*seen + lean + Eigen::Vector2d(noise(rng), noise(rng)));
+    }
     if (r.lamp) frame.pixels.push_back({100.0 + noise(rng), 80.0 + noise(rng)});
     for (int i = 0; i < r.false_candidates; ++i) {
       frame.pixels.push_back({u(rng) * camera.width, u(rng) * camera.height});
