@@ -70,6 +70,14 @@ TEST(Table, SidesAndSurface) {
   EXPECT_EQ(table::SideOf(0.1), 'B');
   EXPECT_TRUE(table::OnSurface(1.37, 0.7625));
   EXPECT_FALSE(table::OnSurface(1.38, 0.0));
+  // The net: below its top plus a radius, between the posts (plus the margins asked for).
+  EXPECT_TRUE(table::MeetsNet(0.0, 0.17, table::kBallRadius));
+  EXPECT_FALSE(table::MeetsNet(0.0, 0.175, table::kBallRadius));
+  EXPECT_FALSE(table::MeetsNet(0.0, 0.17, table::kBallRadius, -0.005));
+  EXPECT_FALSE(table::MeetsNet(0.0, -0.01, table::kBallRadius));
+  EXPECT_TRUE(table::MeetsNet(-0.91, 0.05, table::kBallRadius));
+  EXPECT_FALSE(table::MeetsNet(0.93, 0.05, table::kBallRadius));
+  EXPECT_TRUE(table::MeetsNet(0.93, 0.05, table::kBallRadius, 0.0, table::kBallRadius));
 }
 
 }  // namespace

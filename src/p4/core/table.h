@@ -26,6 +26,15 @@ inline constexpr bool OnSurface(double x, double y) {
   return x >= -kHalfLength && x <= kHalfLength && y >= -kHalfWidth && y <= kHalfWidth;
 }
 
+// True when a ball whose centre crosses the net's plane (x = 0) at (y, z) meets the net: above
+// the table, below the net's top plus its radius and `top_margin`, between the posts plus
+// `side_margin` (the filter's prediction and the event detector draw these margins differently).
+inline constexpr bool MeetsNet(double y, double z, double radius, double top_margin = 0.0,
+                               double side_margin = 0.0) {
+  return z >= 0.0 && z < kNetHeight + radius + top_margin &&
+         (y < 0.0 ? -y : y) <= kNetHalfLength + side_margin;
+}
+
 // 'A' for the half at x < 0, 'B' for x >= 0.
 inline constexpr char SideOf(double x) { return x < 0.0 ? 'A' : 'B'; }
 

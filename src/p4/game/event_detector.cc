@@ -131,8 +131,8 @@ void EventDetector::CheckCrossings(const Sample& from, const Sample& to, std::ve
   if (!net_reported_ && (from.p.x() < 0.0) != (to.p.x() < 0.0)) {
     const double f = from.p.x() / (from.p.x() - to.p.x());
     const Eigen::Vector3d at = from.p + f * (to.p - from.p);
-    if (at.z() > 0.0 && at.z() < table::kNetHeight + r - 0.005 &&
-        std::abs(at.y()) < table::kNetHalfLength + r) {
+    // (The detector's margins: 5 mm under the top plus a radius, a radius beyond the posts.)
+    if (at.z() > 0.0 && table::MeetsNet(at.y(), at.z(), r, -0.005, r)) {
       Event e;
       e.t = from.t + f * (to.t - from.t);
       e.type = "net";

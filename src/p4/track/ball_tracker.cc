@@ -41,8 +41,7 @@ void BallTracker::PredictWithBounce(KalmanFilter* filter, double dt, const Track
       KalmanFilter at = *filter;
       PredictWithTable(&at, contact, o);
       const Vector6d& s = at.state();
-      if (s(2) >= 0.0 && s(2) < table::kNetHeight + r && std::abs(s(1)) <= table::kNetHalfLength &&
-          s(0) * x(0) > 0.0) {
+      if (table::MeetsNet(s(1), s(2), r) && s(0) * x(0) > 0.0) {
         const double across = std::abs(s(3));
         Matrix6d d = Matrix6d::Identity();
         d.diagonal().tail<3>() = Eigen::Vector3d(o.net_speed_kept, 0.5, 0.5);
