@@ -177,27 +177,27 @@ OffsetResult FitAround(const std::vector<IdealTrack>& ref, const std::vector<Lin
   bool fit_rate = false;
   // Each of b's tracks' share of the gradient (its points' errors are alike: one ball, one
   // background, one lean of its lit side), for the offset's sigma below.
+  int track_count = 0;
+  for (const LinePoint& p : points) track_count = std::max(track_count, p.track + 1);
   std::vector<Eigen::Vector2d> per_track;
   for (int iteration = 0; iteration < 30; ++iteration) {
     Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
     Eigen::Vector2d g = Eigen::Vector2d::Zero();
     weighted_squares = 0.0;
     used = 0;
-    per_track.clear();
+    per_track.assign(static_cast<std::size_t>(track_count), Eigen::Vector2d::Zero());
     double s_min = std::numeric_limits<double>::infinity(), s_max = -s_min;
     for (const LinePoint& p : points) {
       const auto l = Linearise(ref, p, offset + rate * p.s, options);
       if (!l) continue;
       const Eigen::Vector2d j(l->slope, l->slope * p.s);
+      const Eigen::Vector2d score = l->weight * j * l->r;
       a += l->weight * j * j.transpose();
-      g += l->weight * j * l->r;
+      g += score;
       weighted_squares += l->weight * l->r * l->r;
       ++used;
       s_min = std::min(s_min, p.s), s_max = std::max(s_max, p.s);
-      if (static_cast<int>(per_track.size()) <= p.track) {
-        per_track.resize(static_cast<std::size_t>(p.track) + 1, Eigen::Vector2d::Zero());
-      }
-      per_track[static_cast<std::size_t>(p.track)] += l->weight * j * l->r;
+      per_track[static_cast<std::size_t>(p.track)] += score;
     }
     if (used < 3) break;
     fit_rate = s_max - s_min >= options.min_span_for_rate_s;

@@ -72,8 +72,10 @@ struct OffsetResult {
   double offset_s = 0.0;  // world time of b's stamp 0
   double rate = 1.0;      // world seconds per second of b's clock
   bool rate_fitted = false;
-  bool in_step = false;     // the offset found was within in_step_sigmas of 0: taken as 0
-  double sigma_s = 0.0;     // standard deviation of the offset (b's tracks as the samples)
+  bool in_step = false;  // the offset found was within in_step_sigmas of 0: taken as 0
+  // Standard deviation of the offset: b's tracks as the samples (with line times fitted, the
+  // points' own).
+  double sigma_s = 0.0;
   int agreements = 0;       // b's points within inlier_px at the offset found
   int points = 0;           // b's points that could be compared (the reference's track there)
   double rms_px = 0.0;      // of the agreeing points' epipolar distances

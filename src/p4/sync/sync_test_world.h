@@ -43,14 +43,13 @@ class Rally {
   }
   // Where the ball is at world time t (nullopt between flights).
   std::optional<Eigen::Vector3d> At(double t) const {
-    for (const Flight& f : flights_) {
-      if (t < f.t0 || t > f.t0 + f.duration) continue;
-      const double s = t - f.t0, d = f.duration;
-      Eigen::Vector3d p = f.from + (f.to - f.from) * (s / d);
-      p.z() += 0.5 * 9.81 * s * (d - s);  // a parabola through both ends
-      return p;
-    }
-    return std::nullopt;
+    const int i = FlightAt(t);
+    if (i < 0) return std::nullopt;
+    const Flight& f = flights_[static_cast<std::size_t>(i)];
+    const double s = t - f.t0, d = f.duration;
+    Eigen::Vector3d p = f.from + (f.to - f.from) * (s / d);
+    p.z() += 0.5 * 9.81 * s * (d - s);  // a parabola through both ends
+    return p;
   }
 
  private:
