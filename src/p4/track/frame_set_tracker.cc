@@ -40,6 +40,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error && search_views_per_camera < 0) *error = "search_views_per_camera must be >= 0";
     return false;
   }
+  if (!(still_max_motion_px >= 0.0)) {
+    if (error) *error = "still_max_motion_px must be at least 0";
+    return false;
+  }
   if (!(streak_min_frame_s > 0.0)) {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
@@ -630,10 +634,17 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // continues a track (a lone view of an orange speck must not start one), at the predicted depth.
   std::optional<WaitingView> waits;
   if (!result.measurement && options_.single_camera_fallback) {
+    std::vector<char> moving(n, 0);
+    if (predicted) {
+      if (const auto velocity = tracker_.PredictVelocity(t)) {
+        moving = PredictedMoving(*predicted, *velocity);
+      }
+    }
     if (n == 1) {
-      result.measurement = SingleView(candidates[0], placed, predicted, &used);
+      result.measurement =
+          SingleView(candidates[0], placed, predicted, predicted_covariance, moving, &used);
     } else if (predicted) {
-      if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance)) {
+      if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance, moving)) {
         // A lone view whose depth the filter knows is a row at once; with the rows held
         // (confirming), every lone view waits for the fixes after it (PlaceLoneViews): from
         // the past alone its depth is an extrapolation.
@@ -1075,18 +1086,23 @@ Measurement FrameSetTracker::ToMeasurement(const Hypothesis& h) const {
 
 std::optional<Measurement> FrameSetTracker::SingleView(
     const std::vector<Detection>& views, const std::vector<std::optional<Measurement>>& placed,
-    const std::optional<Eigen::Vector3d>& predicted, std::vector<std::pair<int, int>>* used) const {
+    const std::optional<Eigen::Vector3d>& predicted, const Eigen::Matrix3d& predicted_covariance,
+    std::span<const char> moving, std::vector<std::pair<int, int>>* used) const {
   std::optional<Measurement> best;
   double best_score = 0.0;
   int best_k = 0;
   for (int k = 0; k < static_cast<int>(views.size()); ++k) {
     const std::optional<Measurement>& m = placed[k];
-    if (!m) continue;
+    if (!m || (views[k].still && !moving.empty() && moving[0])) continue;
     // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
     double score = -static_cast<double>(views[k].area_px);
     if (predicted) {
-      score = (m->position - *predicted).norm();
-      if (score > options_.max_prediction_distance) continue;
+      const Eigen::Vector3d r = m->position - *predicted;
+      if (r.norm() > options_.max_prediction_distance) continue;
+      // Mahalanobis: the view's depth by its diameter is known to a few per cent of the
+      // distance, its direction to a pixel; the nearest in metres would be the one whose
+      // diameter happens to err towards the prediction.
+      score = r.dot((m->covariance + predicted_covariance).ldlt().solve(r));
     }
     if (best && score >= best_score) continue;
     best = m;
@@ -1095,6 +1111,20 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   }
   if (best) *used = {{0, best_k}};
   return best;
+}
+
+std::vector<char> FrameSetTracker::PredictedMoving(const Eigen::Vector3d& predicted,
+                                                   const Eigen::Vector3d& velocity) const {
+  std::vector<char> moving(rig_.size(), 0);
+  for (int c = 0; c < rig_.size(); ++c) {
+    const double period = frame_period_s_[c];
+    if (!(period > 0.0)) continue;
+    const Camera& camera = rig_.cameras[c];
+    const auto a = camera.Project(predicted - 0.5 * period * velocity);
+    const auto b = camera.Project(predicted + 0.5 * period * velocity);
+    moving[c] = a && b && (*b - *a).norm() > options_.still_max_motion_px;
+  }
+  return moving;
 }
 
 std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& camera,
@@ -1122,7 +1152,7 @@ std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& came
 
 std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const std::vector<std::vector<Detection>>& candidates, const Eigen::Vector3d& predicted,
-    const Eigen::Matrix3d& predicted_covariance) const {
+    const Eigen::Matrix3d& predicted_covariance, std::span<const char> moving) const {
   std::optional<LoneView> best;
   double best_d2 = 0.0;
   for (int c = 0; c < rig_.size(); ++c) {
@@ -1154,6 +1184,7 @@ std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const Eigen::Matrix2d information = image_covariance.inverse();
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
+      if (d.still && moving[c]) continue;
       const Eigen::Vector2d r = d.pixel - *centre;
       const double d2 = r.dot(information * r);
       if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;

@@ -160,6 +160,11 @@ struct FrameSetOptions {
   segment::BallColour ball_colour;
   double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
+  // A region that stood still since the last set (Detection::still: a floor patch of the ball's
+  // colour, a spare ball, a lamp) is no lone view of a track predicted to cross more than this
+  // many pixels of its camera in a frame period: the ball in flight moves (at the top of a toss,
+  // or flying along the ray, it may stand still, and so does its prediction).
+  double still_max_motion_px = 3.0;
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
   // The hall about the table's centre where one camera's diameter may place the ball (m: half
   // its length and width, the highest centre; the floor is the lowest): farther is a misread.
@@ -375,9 +380,13 @@ class FrameSetTracker {
   void ReviseRefused(const Tracklet& tracklet, FrameSetResult* result);
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
+  // Not a view that stood still where the track is predicted to move (`moving`, per camera;
+  // still_max_motion_px).
   std::optional<Measurement> SingleView(const std::vector<Detection>& views,
                                         const std::vector<std::optional<Measurement>>& placed,
                                         const std::optional<Eigen::Vector3d>& predicted,
+                                        const Eigen::Matrix3d& predicted_covariance,
+                                        std::span<const char> moving,
                                         std::vector<std::pair<int, int>>* used) const;
   // A view placed by its diameter (paper §3.2), known across its ray to pixel_sigma and along it
   // to diameter_sigma; nullopt outside the hall (hall_half_length, hall_half_width, floor to
@@ -395,7 +404,12 @@ class FrameSetTracker {
   };
   std::optional<LoneView> NearestLoneView(const std::vector<std::vector<Detection>>& candidates,
                                           const Eigen::Vector3d& predicted,
-                                          const Eigen::Matrix3d& predicted_covariance) const;
+                                          const Eigen::Matrix3d& predicted_covariance,
+                                          std::span<const char> moving) const;
+  // Per camera: the ball predicted at `predicted` with `velocity` crosses more than
+  // still_max_motion_px of its image in a frame period (unknown period: false).
+  std::vector<char> PredictedMoving(const Eigen::Vector3d& predicted,
+                                    const Eigen::Vector3d& velocity) const;
   // The lone views whose rows wait (lone_view_depth_sigma) that the smoothed track now places
   // (its depth along the ray known, its projection on the view, a two-view fix after it):
   // revisions of their time-stamps; those older than the hold are given up.

@@ -38,9 +38,10 @@ bool MonocularSmootherOptions::IsValid(std::string* error) const {
   if (!fit.IsValid(error)) return false;
   if (!(pixel_sigma > 0.0 && diameter_sigma > 0.0 && kink_px > 0.0 && bend_px >= kink_px &&
         adopt_px >= 0.0 && max_gap_s > 0.0 && lead_max_gap_frames > 0.0 && max_window_s > 0.0 &&
-        contact_margin >= 0.0 && contact_depth_agree > 0.0 && contact_depth_agree_share >= 0.0 &&
-        bounce_speed_slack >= 0.0 && bounce_min_up_across >= 0.0 && max_fit_rms > 0.0 &&
-        max_fit_rms_short > 0.0 && merge_rms > 0.0 && max_distance_error > 0.0)) {
+        contact_margin >= 0.0 && start_contact_height >= 0.0 && contact_depth_agree > 0.0 &&
+        contact_depth_agree_share >= 0.0 && bounce_speed_slack >= 0.0 &&
+        bounce_min_up_across >= 0.0 && max_fit_rms > 0.0 && max_fit_rms_short > 0.0 &&
+        merge_rms > 0.0 && max_distance_error > 0.0)) {
     *error = "monocular smoother: sigmas, thresholds and times must be positive";
     return false;
   }
@@ -172,7 +173,16 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
           (PolynomialAt(std::span(piece_.begin() + 1, piece_.end()), piece_.front().t, 1) -
            piece_.front().ideal_px)
                   .norm() > options_.bend_px) {
+        Unmeasure(piece_.front().t);
         piece_.erase(piece_.begin());
+        // Without it the views on either side of the bend may lie too far apart to be joined
+        // (another bend may hide between them: a return stopped by the net): the chain breaks.
+        if (pending_bend_ && !window_.empty() &&
+            piece_.front().t - window_.back().back().t > options_.max_gap_s) {
+          pending_bend_ = false;
+          FitWindow(false);
+          ForgetChain();
+        }
       }
     }
     if (pending_bend_ && static_cast<int>(piece_.size()) >= options_.min_piece_views) {
@@ -212,9 +222,7 @@ void MonocularSmoother::EndPiece(const Piece& next) {
         orphans_.push_back(rest);  // the next window may reach back to it
       }
     }
-    lead_in_.reset();
-    window_.clear();
-    junctions_.clear();
+    ForgetChain();
   };
   if (static_cast<int>(piece_.size()) < options_.min_fit_views) {
     break_chain(piece_);
@@ -357,20 +365,25 @@ void MonocularSmoother::FitWindow(bool with_open) {
   guess.junctions.assign(junctions_.begin(), junctions_.begin() + (pieces.size() - 1));
   const double t_first = window_.front().front().t, t_to = window_[closed - 1].back().t;
   const bool lead = lead_in_ && t_first - lead_in_->after_t <= options_.max_gap_s;
-  // A chain's first piece, slow and rising: the service toss (laws 2.6.2).
-  FlightPiece& first = guess.pieces.front();
-  first.toss = !lead && first.state.tail<3>().norm() < options_.toss_max_speed &&
-               PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
-  if (lead) guess.start = lead_in_junction_;
-  const auto fit = FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
-  const double t_from = lead ? lead_in_->after_t : t_first;
-  std::optional<LeadIn> next;
-  Junction next_junction;
   // A window with a piece too short to judge its bends must fit well to be believed.
   const bool has_short = std::any_of(pieces.begin(), pieces.end(), [&](const Piece* p) {
     return static_cast<int>(p->size()) < options_.min_piece_views;
   });
   const double max_rms = has_short ? options_.max_fit_rms_short : options_.max_fit_rms;
+  // A chain that starts as the ball leaves the table; else its first piece, slow and rising, is
+  // the service toss (laws 2.6.2).
+  std::optional<Stroke> fit;
+  if (!lead) fit = FitFromTable(observations, guess, max_rms);
+  if (!fit) {
+    FlightPiece& first = guess.pieces.front();
+    first.toss = !lead && first.state.tail<3>().norm() < options_.toss_max_speed &&
+                 PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
+    if (lead) guess.start = lead_in_junction_;
+    fit = FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
+  }
+  const double t_from = lead ? lead_in_->after_t : t_first;
+  std::optional<LeadIn> next;
+  Junction next_junction;
   // Nothing but its diameters holds a lone window: it needs many of them.
   const int views = std::accumulate(pieces.begin(), pieces.end(), 0, [](int n, const Piece* p) {
     return n + static_cast<int>(p->size());
@@ -451,6 +464,32 @@ void MonocularSmoother::FitWindow(bool with_open) {
   junctions_.erase(junctions_.begin(), junctions_.begin() + std::min(junctions_.size(), all));
 }
 
+std::optional<Stroke> MonocularSmoother::FitFromTable(
+    std::span<const std::vector<BearingObservation>> observations, Stroke guess,
+    double max_rms) const {
+  const std::vector<BearingObservation>& first = observations.front();
+  const double t_first = first.front().t;
+  // Where the flight alone (no contact, no toss) has the ball at its first view.
+  const auto alone = FitStroke(observations, guess, options_.fit);
+  if (!alone) return std::nullopt;
+  const Vector6d x = PieceStateAt(alone->pieces.front(), t_first, options_.fit.model);
+  const double r = options_.fit.model.ball_radius;
+  const double m = options_.contact_margin;
+  if (!(x(5) > 0.0) || std::abs(x(2) - r) > options_.start_contact_height ||
+      std::abs(x(0)) > table::kHalfLength + m || std::abs(x(1)) > table::kHalfWidth + m) {
+    return std::nullopt;
+  }
+  // The contact was after the frame before the first view (the camera's frame period).
+  Junction contact;
+  contact.t = t_first - (first[1].t - first[0].t);
+  contact.point = {x(0), x(1), r};
+  contact.on_plane = true;
+  guess.start = contact;
+  auto fit = FitStroke(observations, guess, options_.fit);
+  if (!Holds(fit, max_rms)) return std::nullopt;
+  return fit;
+}
+
 std::optional<Stroke> MonocularSmoother::FitRun(
     std::span<const std::vector<BearingObservation>> observations, const Stroke& guess, size_t i,
     size_t j, const LeadIn* lead, const std::optional<Junction>& start) const {
@@ -503,6 +542,24 @@ void MonocularSmoother::Continue(const FlightPiece& from, double t_first, double
     const Eigen::Vector3d p = c + (x.head<3>() - c).norm() * view->bearing.direction;
     r.measurement->position = p;
     if (r.state) r.state->position = p, r.state->velocity = x.tail<3>();
+  }
+}
+
+void MonocularSmoother::ForgetChain() {
+  lead_in_.reset();
+  window_.clear();
+  junctions_.clear();
+}
+
+void MonocularSmoother::Unmeasure(FrameSetResult* r) {
+  r->measurement.reset();
+  for (Detection& d : r->detections) d.accepted = false;
+  if (r->state) r->state->measured = false, r->state->cameras = 0;
+}
+
+void MonocularSmoother::Unmeasure(double t) {
+  for (FrameSetResult& r : held_) {
+    if (std::abs(ToSeconds(r.t) - t) < 1e-9) Unmeasure(&r);
   }
 }
 

@@ -51,8 +51,12 @@ struct MonocularSmootherOptions {
   // Where a window is cut into runs, a run is led in by the one before across at most this many
   // of its frame periods (more missed frames may hide another bend).
   double lead_max_gap_frames = 4.5;
-  double max_window_s = 2.5;         // a longer window without a bounce is handed on anyway
-  double contact_margin = 0.05;      // m beyond the table's outline that still counts as on it
+  double max_window_s = 2.5;     // a longer window without a bounce is handed on anyway
+  double contact_margin = 0.05;  // m beyond the table's outline that still counts as on it
+  // A chain's first piece whose first view lies this near the table top (m, rising, as its
+  // quadratic guess from bearings and diameters places it; the diameters' bias may place it a
+  // few per cent of the distance off) left the table just before it (FitFromTable; 0: never).
+  double start_contact_height = 0.08;
   double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most...
   double contact_depth_agree_share = 0.25;  // ...or this share of the contact's distance
   // A bounce keeps the horizontal velocity across the ray in sign and mostly in size (friction
@@ -127,6 +131,14 @@ class MonocularSmoother {
   std::optional<Stroke> FitRun(std::span<const std::vector<BearingObservation>> observations,
                                const Stroke& guess, size_t i, size_t j, const LeadIn* lead,
                                const std::optional<Junction>& start) const;
+  // A chain that starts with no lead-in, its first piece (as its quadratic guess places it)
+  // rising from the table top at its first view (start_contact_height, the outline and
+  // contact_margin): the ball left the table in the frame period before, a bounce whose arrival
+  // no view saw (behind the net, after a net cord, a gap in the views). The window fitted from
+  // that contact (stroke_fit.h: it anchors the diameters' scale as a bounce between pieces
+  // does) when that fit holds; else nullopt.
+  std::optional<Stroke> FitFromTable(std::span<const std::vector<BearingObservation>> observations,
+                                     Stroke guess, double max_rms) const;
   // The fit explains the bearings within max_rms and the diameters (max_distance_error).
   bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
@@ -134,6 +146,12 @@ class MonocularSmoother {
   // flight next to them (`from`, before or after) has there (the ball cannot be far from where
   // it was a moment ago).
   void Continue(const FlightPiece& from, double t_first, double t_last);
+  // The chain is broken (what it held is fitted already): no lead-in, window or junctions.
+  void ForgetChain();
+  // A view that is no view of the ball's flight (off every piece at a bend): its row is no
+  // measurement (the filter's place stays, unless a fit later spans it).
+  static void Unmeasure(FrameSetResult* result);
+  void Unmeasure(double t);  // the held row at t
   std::vector<FrameSetResult> Release(double before_t);
 
   Camera camera_;

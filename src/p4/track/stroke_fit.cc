@@ -204,6 +204,17 @@ struct ScalePrior {
   double sigma;
 };
 
+// A contact's time, known to lie in an interval: its middle, with the interval's uniform spread.
+struct ContactTimePrior {
+  ContactTimePrior(double mean, double sigma) : mean(mean), sigma(sigma) {}
+  template <typename T>
+  bool operator()(const T* junction, T* r) const {
+    r[0] = (junction[0] - T(mean)) / T(sigma);
+    return true;
+  }
+  double mean, sigma;
+};
+
 // Each piece's scale about the fit's common one (StrokeFitOptions::piece_scale_sigma).
 struct PieceScalePrior {
   explicit PieceScalePrior(double sigma) : sigma(sigma) {}
@@ -317,9 +328,12 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   problem.AddParameterBlock(&distance_scale, 1);
   // Only an anchor fixes the scale: a contact with a known plane or the lead-in's end (in free
   // flight gravity's pull alone would, but the spin's Magnus pull confounds it).
-  const bool anchored =
-      lead_in != nullptr || std::any_of(guess.junctions.begin(), guess.junctions.end(),
-                                        [](const Junction& j) { return j.on_plane; });
+  // Without a lead-in, a start on a plane: the first piece left a contact with it (a bounce
+  // whose arrival no view saw) at guess.start->t or later.
+  const bool starts_on_plane = lead_in == nullptr && guess.start && guess.start->on_plane;
+  const bool anchored = lead_in != nullptr || starts_on_plane ||
+                        std::any_of(guess.junctions.begin(), guess.junctions.end(),
+                                    [](const Junction& j) { return j.on_plane; });
   const auto bound = [&](double* scale) {
     problem.SetParameterLowerBound(scale, 0,
                                    std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma));
@@ -409,6 +423,33 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
     problem.SetParameterBlockConstant(lead.data());
     join(lead.data(), lead_in->piece.t0, lead_in->sigma, 0, start_guess, start.data(),
          lead_in->after_t, t_first);
+  } else if (starts_on_plane) {
+    const double t_first = observations[0].front().t;
+    const double earliest = std::min(guess.start->t, t_first);
+    start_guess = *guess.start;
+    start_guess.t = 0.5 * (earliest + t_first);
+    const Vector6d x = PieceStateAt(guess.pieces[0], start_guess.t, model, step);
+    start_guess.point = {x(0), x(1), guess.start->point.z()};  // z: the plane's height
+    start = to_params(start_guess);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<JunctionCost, 3, 9, 4>(
+            new JunctionCost(guess.pieces[0].t0, options.contact_sigma, model, step)),
+        nullptr, pieces[0].data(), start.data());
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PlaneCost, 1, 4>(
+                                 new PlaneCost(guess.start->point.z(), options.contact_sigma)),
+                             nullptr, start.data());
+    // Any time in the interval: its middle, give or take its uniform spread (the scale the
+    // contact fixes is only as good as this time: the piece rises |vz| sigma_t about it).
+    if (t_first - earliest > 1e-6) {
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<ContactTimePrior, 1, 4>(new ContactTimePrior(
+              0.5 * (earliest + t_first), (t_first - earliest) / std::sqrt(12.0))),
+          nullptr, start.data());
+      problem.SetParameterLowerBound(start.data(), 0, earliest);
+      problem.SetParameterUpperBound(start.data(), 0, t_first);
+    } else {
+      problem.SetManifold(start.data(), new ceres::SubsetManifold(4, {0}));
+    }
   }
 
   ceres::Solver::Options solver;
@@ -466,7 +507,7 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   for (size_t i = 0; i + 1 < n; ++i) {
     out.junctions.push_back(to_junction(junctions[i], guess.junctions[i].on_plane));
   }
-  if (lead_in) out.start = to_junction(start, false);
+  if (lead_in || starts_on_plane) out.start = to_junction(start, starts_on_plane);
   out.rms_bearing = std::sqrt(sum / std::max(1, count));
   out.distance_scale = distance_scale;
   return out;

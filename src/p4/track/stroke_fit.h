@@ -63,7 +63,8 @@ struct Junction {
 struct Stroke {
   std::vector<FlightPiece> pieces;
   std::vector<Junction> junctions;  // junctions[i] joins pieces[i] and pieces[i + 1]
-  // With a lead-in: where the lead-in piece meets pieces[0].
+  // With a lead-in: where the lead-in piece meets pieces[0]; without one, a contact on a plane
+  // that pieces[0] left (FitStroke).
   std::optional<Junction> start;
   double rms_bearing = 0.0;  // bearing residuals of the fit, in sigmas
   // Per piece, the median over its views with a diameter of |fitted distance / (the piece's
@@ -132,7 +133,11 @@ FlightPiece QuadraticPiece(std::span<const BearingObservation> observations);
 // Preconditions: observations.size() == guess.pieces.size() >= 1, guess.junctions.size() ==
 // pieces - 1, each piece's observations in increasing time with at least 3 of them, and the
 // pieces in time order. guess: a starting point (t0 of each piece is kept as given; guess.start
-// is used with a lead-in when set). nullopt when the solver fails or the solution is not finite.
+// is used with a lead-in when set). Without a lead-in, guess.start on a plane (point.z() its
+// height) says the first piece left a contact with that plane at guess.start->t or later, before
+// its first view (a bounce whose arrival no view saw): it anchors the fit as a bounce between
+// pieces does; the contact found is the result's start. nullopt when the solver fails or the
+// solution is not finite.
 std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>> observations,
                                 const Stroke& guess, const StrokeFitOptions& options,
                                 const LeadIn* lead_in = nullptr);
