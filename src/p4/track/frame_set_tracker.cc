@@ -10,6 +10,7 @@
 #include "p4/geometry/triangulation.h"
 #include "p4/segment/ball_edge.h"
 #include "p4/segment/ball_measure.h"
+#include "p4/track/flight_model.h"
 #include "p4/track/rts_smoother.h"
 
 namespace p4::track {
@@ -588,6 +589,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   std::vector<int> offset(n + 1, 0);
   for (int c = 0; c < n; ++c) offset[c + 1] = offset[c] + static_cast<int>(candidates[c].size());
   std::vector<int> adopted;  // indices into result.detections of an adopted tracklet's last point
+  bool started = false;      // a confirmed tracklet became the track
   if (confirming) {
     // Every distinct candidate of this time-stamp goes to the initiator, best first.
     std::vector<TrackletPoint> points;
@@ -689,6 +691,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       used.clear();
       AdoptTracklet(*confirmed, &result);
       adopted = confirmed->points.back().detections;
+      started = true;
     } else if (!took) {
       result.tentative = result.measurement.has_value();
       used.clear();
@@ -702,6 +705,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     // first after a hit, before the coasting filter's gate grew) are rows all the same.
     if (confirmed && !adopt && n >= 2) ReviseRefused(*confirmed, &result);
   }
+  if (started && n >= 2) BackFill(confirmed->points[confirmed->flight_start].t, &result);
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
   for (const Revision& r : result.revisions) {
@@ -722,6 +726,9 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   for (int i : adopted) result.detections[i].accepted = true;
   PlaceLoneViews(&result);
+  while (!past_.empty() && t - past_.front().t > hold) past_.pop_front();
+  past_.push_back(
+      {t, result.detections, result.state && result.state->measured && !result.tentative});
   if (clock_) {
     const TimeNs t3 = clock_();
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
@@ -787,6 +794,65 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->measurement = tracklet.points.back().measurement;
   result->tentative = false;
   result->new_track = true;
+}
+
+void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
+  const std::vector<FilterStep>& steps = tracker_.history();
+  if (!(options_.backfill_px > 0.0) || steps.empty() || past_.empty()) return;
+  // The track's first step (its flight's first point), smoothed with the steps after it.
+  std::size_t first = steps.size() - 1;
+  while (first > 0 && !steps[first].start) --first;
+  const SmoothedState s0 = SmoothSteps(steps)[first];
+  const KalmanOptions& kalman = tracker_options_.kalman;
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  Vector6d x = s0.state;
+  TimeNs at = s0.t;
+  for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
+    if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
+    const bool revised = std::any_of(result->revisions.begin(), result->revisions.end(),
+                                     [&](const Revision& r) { return r.t == set->t; });
+    if (result->t - set->t > hold || set->measured || revised) break;
+    // Carried back in steps of at most 4 ms (the midpoint rule: well under a millimetre).
+    const int n_steps = static_cast<int>(std::ceil(ToSeconds(at - set->t) / 0.004));
+    const double h = ToSeconds(set->t - at) / std::max(1, n_steps);
+    for (int k = 0; k < n_steps; ++k) x = DragStep(x, h, kalman.gravity, kalman.drag_per_mass);
+    at = set->t;
+    // The first state's covariance carried back (uniform motion: the position's spread grows with
+    // the velocity's).
+    const double dt = ToSeconds(set->t - s0.t);
+    const Matrix6d& p0 = s0.covariance;
+    const Eigen::Matrix3d position_covariance =
+        p0.topLeftCorner<3, 3>() + dt * (p0.topRightCorner<3, 3>() + p0.bottomLeftCorner<3, 3>()) +
+        dt * dt * p0.bottomRightCorner<3, 3>();
+    int best = -1;
+    double best_px = options_.backfill_px;
+    for (int i = 0; i < static_cast<int>(set->detections.size()); ++i) {
+      const Detection& d = set->detections[i];
+      if (d.still || d.cut) continue;
+      const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
+      if (!seen) continue;
+      const double off = (*seen - d.pixel).norm();
+      if (off <= best_px) best = i, best_px = off;
+    }
+    if (best < 0) break;
+    const Detection& d = set->detections[best];
+    const Camera& camera = rig_.cameras[d.camera];
+    const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
+    if (std::sqrt(ray.dot(position_covariance * ray)) > options_.single_view_max_depth_sigma) break;
+    const double depth = (x.head<3>() - camera.Center()).dot(ray);
+    Revision r;
+    r.t = set->t;
+    r.measurement.position = camera.Center() + depth * ray;
+    r.measurement.covariance = position_covariance;
+    r.measurement.cameras = 1;
+    r.state.t = set->t;
+    r.state.position = r.measurement.position;
+    r.state.velocity = x.tail<3>();
+    r.state.measured = true;
+    r.state.cameras = 1;
+    r.accepted = {best};
+    result->revisions.push_back(std::move(r));
+  }
 }
 
 void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {

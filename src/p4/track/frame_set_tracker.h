@@ -193,6 +193,14 @@ struct FrameSetOptions {
   // squared Mahalanobis distance (99 % of 3 degrees of freedom): across a hit the smoothed path
   // bends away from the ball on both sides.
   double lone_view_consistency_chi2 = 11.34;
+  // When a track starts (a confirmed tracklet adopted), the sets of the hold before its flight's
+  // first point that have no measured row are looked at again, newest first: in each, a camera's
+  // view within backfill_px of the flight carried back to that time (the smoothed first state,
+  // gravity and drag, backwards) is a view of the ball (the first frames after a hit, which one
+  // camera saw and the tracklet could not take); the one nearest it is a row on its ray at the
+  // flight's depth, while that depth is known to single_view_max_depth_sigma. A set with no such
+  // view, or a measured row, ends the search (the hit lies there). 0: off. Rigs of 2+ cameras.
+  double backfill_px = 3.0;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
   int threads = 1;
@@ -414,6 +422,9 @@ class FrameSetTracker {
   // (its depth along the ray known, its projection on the view, a two-view fix after it):
   // revisions of their time-stamps; those older than the hold are given up.
   void PlaceLoneViews(FrameSetResult* result);
+  // A track just started, its flight's first point at flight_t0: the views of that flight in
+  // the held sets before it (backfill_px), as revisions of their time-stamps.
+  void BackFill(TimeNs flight_t0, FrameSetResult* result) const;
 
   Rig rig_;
   segment::ColorLut lut_;
@@ -470,6 +481,14 @@ class FrameSetTracker {
   std::vector<WaitingView> waiting_;  // lone views whose rows wait for the smoother, oldest first
   std::deque<TimeNs> fixes_;          // the time-stamps of the hold whose two views the track took
   std::deque<TimeNs> taken_;          // the time-stamps of the hold whose measurement it took
+  // The sets of the hold: their views (as in FrameSetResult::detections) and whether their row
+  // was a measurement, for BackFill.
+  struct PastSet {
+    TimeNs t = 0;
+    std::vector<Detection> detections;
+    bool measured = false;
+  };
+  std::deque<PastSet> past_;
   std::function<TimeNs()> clock_;
 };
 

@@ -1037,6 +1037,50 @@ TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed)
   }
 }
 
+// Two cameras at 120 fps: a ball just hit, which camera 1 does not see for its first frames
+// (k < kSeen: behind the player) while camera 0 does. No track can start from one camera's
+// views; it starts once both see the ball. Its flight carried back (gravity and drag, from the
+// smoothed first state) passes through camera 0's earlier views: the one just before the start
+// becomes a row (a revision, written by the hold) on its ray at the flight's depth (measured 1.1
+// mm off); the one before it does not, as the flight's depth there is known only to more than
+// single_view_max_depth_sigma (2.3 cm), as for any lone view. With backfill_px 0: none.
+TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfOneCamera) {
+  const auto ball_at = [](double t) -> Eigen::Vector3d {
+    return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
+           Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
+  };
+  constexpr int kSeen = 3, kSets = 14;
+  for (const double backfill : {FrameSetOptions{}.backfill_px, 0.0}) {
+    FrameSetOptions options;
+    options.backfill_px = backfill;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    ResultHold hold(options.initiator.max_span_s);
+    std::vector<FrameSetResult> rows;
+    for (int k = 0; k < kSets; ++k) {
+      const double t = k / 120.0;
+      std::vector<std::optional<ImageView>> views;
+      for (int c = 0; c < 2; ++c) {
+        sim::FrameContent content;
+        if (c == 0 || k >= kSeen) content.ball = {ball_at(t)};
+        renderers_[c].Render(content, k, &frames_[c]);
+        views.push_back(frames_[c].View());
+      }
+      for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
+    }
+    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
+    const auto measured = [&](int k) { return rows[k].state && rows[k].state->measured; };
+    if (backfill > 0.0) {
+      ASSERT_TRUE(measured(kSeen - 1));
+      EXPECT_EQ(rows[kSeen - 1].state->cameras, 1);
+      EXPECT_LT((rows[kSeen - 1].state->position - ball_at((kSeen - 1) / 120.0)).norm(), 0.005);
+      EXPECT_FALSE(measured(kSeen - 3));
+    } else {
+      for (int k = 0; k < kSeen; ++k) EXPECT_FALSE(measured(k)) << k;
+    }
+  }
+}
+
 TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   std::string why;
   EXPECT_TRUE(FrameSetOptions{}.IsValid(&why)) << why;
