@@ -809,7 +809,10 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
   TimeNs at = s0.t;
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
-    const bool revised = std::any_of(result->revisions.begin(), result->revisions.end(),
+    // A row measured then, or made one since (a lone view placed, this adoption's flight before
+    // the hit): the flight before.
+    const bool revised = std::find(taken_.begin(), taken_.end(), set->t) != taken_.end() ||
+                         std::any_of(result->revisions.begin(), result->revisions.end(),
                                      [&](const Revision& r) { return r.t == set->t; });
     if (result->t - set->t > hold || set->measured || revised) break;
     // Carried back in steps of at most 4 ms (the midpoint rule: well under a millimetre).

@@ -53,9 +53,9 @@ struct MonocularSmootherOptions {
   double lead_max_gap_frames = 4.5;
   double max_window_s = 2.5;     // a longer window without a bounce is handed on anyway
   double contact_margin = 0.05;  // m beyond the table's outline that still counts as on it
-  // A chain's first piece whose first view lies this near the table top (m, rising, as its
-  // quadratic guess from bearings and diameters places it; the diameters' bias may place it a
-  // few per cent of the distance off) left the table just before it (FitFromTable; 0: never).
+  // A chain's first piece whose first view lies this near the table top (m, rising, as the
+  // flight fitted alone places it: no contact, no toss; the diameters' bias may place it a few
+  // per cent of the distance off) left the table just before it (FitFromTable; 0: never).
   double start_contact_height = 0.08;
   double contact_depth_agree = 0.6;  // m: the diameters' distance vs the contact's, at most...
   double contact_depth_agree_share = 0.25;  // ...or this share of the contact's distance
@@ -131,7 +131,7 @@ class MonocularSmoother {
   std::optional<Stroke> FitRun(std::span<const std::vector<BearingObservation>> observations,
                                const Stroke& guess, size_t i, size_t j, const LeadIn* lead,
                                const std::optional<Junction>& start) const;
-  // A chain that starts with no lead-in, its first piece (as its quadratic guess places it)
+  // A chain that starts with no lead-in, its first piece (as the flight fitted alone places it)
   // rising from the table top at its first view (start_contact_height, the outline and
   // contact_margin): the ball left the table in the frame period before, a bounce whose arrival
   // no view saw (behind the net, after a net cord, a gap in the views). The window fitted from
