@@ -827,33 +827,52 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
     const Eigen::Matrix3d position_covariance =
         p0.topLeftCorner<3, 3>() + dt * (p0.topRightCorner<3, 3>() + p0.bottomLeftCorner<3, 3>()) +
         dt * dt * p0.bottomRightCorner<3, 3>();
-    int best = -1;
-    double best_px = options_.backfill_px;
+    // Each camera's view nearest the flight, within backfill_px.
+    std::vector<int> nearest(rig_.size(), -1);
+    std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
     for (int i = 0; i < static_cast<int>(set->detections.size()); ++i) {
       const Detection& d = set->detections[i];
       if (d.still || d.cut) continue;
       const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
       if (!seen) continue;
       const double off = (*seen - d.pixel).norm();
-      if (off <= best_px) best = i, best_px = off;
+      if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
     }
-    if (best < 0) break;
-    const Detection& d = set->detections[best];
-    const Camera& camera = rig_.cameras[d.camera];
-    const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
-    if (std::sqrt(ray.dot(position_covariance * ray)) > options_.single_view_max_depth_sigma) break;
-    const double depth = (x.head<3>() - camera.Center()).dot(ray);
     Revision r;
     r.t = set->t;
-    r.measurement.position = camera.Center() + depth * ray;
-    r.measurement.covariance = position_covariance;
-    r.measurement.cameras = 1;
+    std::vector<Observation> observations;
+    Hypothesis views;
+    for (int c = 0; c < rig_.size(); ++c) {
+      if (nearest[c] < 0) continue;
+      r.accepted.push_back(nearest[c]);
+      observations.push_back({c, set->detections[nearest[c]].pixel});
+      views.members.emplace_back(c, nearest[c]);
+    }
+    if (observations.empty()) break;
+    if (observations.size() >= 2) {
+      // Two views or more: the flight only tells which; the point is theirs.
+      const auto estimate = TriangulateObservations(rig_.cameras, observations);
+      if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) break;
+      views.estimate = *estimate;
+      r.measurement = ToMeasurement(views);
+    } else {
+      // One: on its ray at the flight's depth, while the flight knows that depth.
+      const Detection& d = set->detections[r.accepted.front()];
+      const Camera& camera = rig_.cameras[d.camera];
+      const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
+      if (std::sqrt(ray.dot(position_covariance * ray)) > options_.single_view_max_depth_sigma) {
+        break;
+      }
+      const double depth = (x.head<3>() - camera.Center()).dot(ray);
+      r.measurement.position = camera.Center() + depth * ray;
+      r.measurement.covariance = position_covariance;
+      r.measurement.cameras = 1;
+    }
     r.state.t = set->t;
     r.state.position = r.measurement.position;
     r.state.velocity = x.tail<3>();
     r.state.measured = true;
-    r.state.cameras = 1;
-    r.accepted = {best};
+    r.state.cameras = r.measurement.cameras;
     result->revisions.push_back(std::move(r));
   }
 }

@@ -1081,6 +1081,50 @@ TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfOneCame
   }
 }
 
+// Two cameras at 120 fps: for its first frames (k < kEarly) the ball is held in a hand of its
+// colour in camera 1's view (a disc twice its size about it), so no pair of views agrees in size
+// and no track can start; once the hand lets go it does. Carried back, the flight passes through
+// both cameras' earlier views: each earlier set with a view within backfill_px in both is a row
+// triangulated from them (the flight only tells which views), however far back the hold reaches,
+// where one view alone would be placed only while the flight knows its depth to 2 cm.
+TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfTwoCameras) {
+  const auto ball_at = [](double t) -> Eigen::Vector3d {
+    return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
+           Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
+  };
+  constexpr int kEarly = 4, kSets = 14;
+  for (const double backfill : {FrameSetOptions{}.backfill_px, 0.0}) {
+    FrameSetOptions options;
+    options.backfill_px = backfill;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    ResultHold hold(options.initiator.max_span_s);
+    std::vector<FrameSetResult> rows;
+    for (int k = 0; k < kSets; ++k) {
+      const double t = k / 120.0;
+      auto views = Frames(ball_at(t), k);
+      if (k < kEarly) {
+        const auto px = rig_.cameras[1].Project(ball_at(t));
+        ASSERT_TRUE(px.has_value());
+        PaintOrange(1, px->x(), px->y(),
+                    SphereDiameterPx(rig_.cameras[1], ball_at(t), table::kBallRadius));
+      }
+      for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
+    }
+    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
+    for (int k = 0; k < kEarly; ++k) {
+      const bool measured = rows[k].state && rows[k].state->measured;
+      if (backfill > 0.0) {
+        ASSERT_TRUE(measured) << k;
+        EXPECT_EQ(rows[k].state->cameras, 2) << k;
+        EXPECT_LT((rows[k].state->position - ball_at(k / 120.0)).norm(), 0.005) << k;
+      } else {
+        EXPECT_FALSE(measured) << k;
+      }
+    }
+  }
+}
+
 TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   std::string why;
   EXPECT_TRUE(FrameSetOptions{}.IsValid(&why)) << why;
