@@ -21,9 +21,10 @@ inline constexpr double kBallRadius = 0.02;
 inline constexpr double kBallDiameter = 2.0 * kBallRadius;
 inline constexpr double kBallMass = 0.0027;
 
-// True when (x, y) lies on the playing surface (edges included).
-inline constexpr bool OnSurface(double x, double y) {
-  return x >= -kHalfLength && x <= kHalfLength && y >= -kHalfWidth && y <= kHalfWidth;
+// True when (x, y) lies on the playing surface (edges included), or within `margin` (m) of it.
+inline constexpr bool OnSurface(double x, double y, double margin = 0.0) {
+  return x >= -kHalfLength - margin && x <= kHalfLength + margin && y >= -kHalfWidth - margin &&
+         y <= kHalfWidth + margin;
 }
 
 // True when a ball whose centre crosses the net's plane (x = 0) at (y, z) meets the net: above

@@ -196,8 +196,7 @@ void EventDetector::Cut(std::vector<Event>* out) {
   const bool reverses = (v0.x() < 0.0) != (v1.x() < 0.0) && std::abs(v1.x()) > 1.0;
   const bool struck = reverses || (std::abs(v0.x()) < 0.5 && std::abs(v1.x()) > 1.0);
   const double m = options_.table_margin;
-  if (flips && !reverses && at.z() < options_.bounce_max_z &&
-      std::abs(at.x()) <= table::kHalfLength + m && std::abs(at.y()) <= table::kHalfWidth + m) {
+  if (flips && !reverses && at.z() < options_.bounce_max_z && table::OnSurface(at.x(), at.y(), m)) {
     e.type = "bounce";
     e.side = table::SideOf(at.x());
     e.position = Eigen::Vector3d(at.x(), at.y(), 0.0);

@@ -80,9 +80,33 @@ class FrameSetTrackerTest : public RenderedRigTest {
   }
   // Paints an orange disc into camera c's frame (a second orange object).
   void PaintOrange(int c, double cx, double cy, double r) { PaintDisc(c, cx, cy, r, 137, 65, 199); }
+
+  // The rows a tracker with `options` writes through the hold (as RunTracking does) for `sets`
+  // frame sets at `fps`, each camera's picture of set k rendered by paint(k, t) into frames_.
+  std::vector<FrameSetResult> HeldRows(const FrameSetOptions& options, int sets, double fps,
+                                       const std::function<void(int, double)>& paint) {
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    ResultHold hold(options.initiator.max_span_s);
+    std::vector<FrameSetResult> rows;
+    for (int k = 0; k < sets; ++k) {
+      const double t = k / fps;
+      paint(k, t);
+      std::vector<std::optional<ImageView>> views;
+      for (I420Image& f : frames_) views.push_back(f.View());
+      for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
+    }
+    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    return rows;
+  }
 };
 
 Eigen::Vector3d Ball(int k) { return {-1.0 + 0.05 * k, 0.2, 0.3 + 0.01 * k - 0.0004 * k * k}; }
+
+// A ball just hit, flying at 5 m/s across the table and falling, t seconds after the hit.
+Eigen::Vector3d HitBall(double t) {
+  return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
+         Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
+}
 
 TEST_F(FrameSetTrackerTest, TriangulatesTheBallAndNarrowsTheSearch) {
   FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
@@ -983,10 +1007,6 @@ TEST_F(FrameSetTrackerTest, OneCameraMeasuresNothingCutByTheImagesEdge) {
 // under 2 cm and the hold (ResultHold) writes it as a measurement. With lone views left out
 // (lone_view_depth_sigma 0) the row is the filter's prediction, not a measurement.
 TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed) {
-  const auto ball_at = [](double t) -> Eigen::Vector3d {
-    return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
-           Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
-  };
   constexpr int kHidden = 6;
   for (const double lone_sigma : {0.3, 0.0}) {
     FrameSetOptions options;
@@ -1000,7 +1020,7 @@ TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed)
       std::vector<std::optional<ImageView>> views;
       for (int c = 0; c < 2; ++c) {
         sim::FrameContent content;
-        if (c == 0 || k != kHidden) content.ball = {ball_at(t)};
+        if (c == 0 || k != kHidden) content.ball = {HitBall(t)};
         renderers_[c].Render(content, k, &frames_[c]);
         views.push_back(frames_[c].View());
       }
@@ -1020,7 +1040,7 @@ TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed)
       EXPECT_EQ(lone.measurement->cameras, 1);
       EXPECT_TRUE(lone.state->measured);
       // Measured 0.7 mm (1 px is 6-8 mm here); the filter's prediction alone is 4.3 mm off.
-      EXPECT_LT((lone.state->position - ball_at(kHidden / 25.0)).norm(), 0.003);
+      EXPECT_LT((lone.state->position - HitBall(kHidden / 25.0)).norm(), 0.003);
       const int accepted = static_cast<int>(
           std::count_if(lone.detections.begin(), lone.detections.end(),
                         [](const Detection& d) { return d.accepted && d.camera == 0; }));
@@ -1045,35 +1065,23 @@ TEST_F(FrameSetTrackerTest, ALoneViewBetweenTwoViewFixesBecomesARowOnceSmoothed)
 // mm off); the one before it does not, as the flight's depth there is known only to more than
 // single_view_max_depth_sigma (2.3 cm), as for any lone view. With backfill_px 0: none.
 TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfOneCamera) {
-  const auto ball_at = [](double t) -> Eigen::Vector3d {
-    return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
-           Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
-  };
   constexpr int kSeen = 3, kSets = 14;
   for (const double backfill : {FrameSetOptions{}.backfill_px, 0.0}) {
     FrameSetOptions options;
     options.backfill_px = backfill;
-    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
-    ResultHold hold(options.initiator.max_span_s);
-    std::vector<FrameSetResult> rows;
-    for (int k = 0; k < kSets; ++k) {
-      const double t = k / 120.0;
-      std::vector<std::optional<ImageView>> views;
+    const std::vector<FrameSetResult> rows = HeldRows(options, kSets, 120.0, [&](int k, double t) {
       for (int c = 0; c < 2; ++c) {
         sim::FrameContent content;
-        if (c == 0 || k >= kSeen) content.ball = {ball_at(t)};
+        if (c == 0 || k >= kSeen) content.ball = {HitBall(t)};
         renderers_[c].Render(content, k, &frames_[c]);
-        views.push_back(frames_[c].View());
       }
-      for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
-    }
-    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    });
     ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
     const auto measured = [&](int k) { return rows[k].state && rows[k].state->measured; };
     if (backfill > 0.0) {
       ASSERT_TRUE(measured(kSeen - 1));
       EXPECT_EQ(rows[kSeen - 1].state->cameras, 1);
-      EXPECT_LT((rows[kSeen - 1].state->position - ball_at((kSeen - 1) / 120.0)).norm(), 0.005);
+      EXPECT_LT((rows[kSeen - 1].state->position - HitBall((kSeen - 1) / 120.0)).norm(), 0.005);
       EXPECT_FALSE(measured(kSeen - 3));
     } else {
       for (int k = 0; k < kSeen; ++k) EXPECT_FALSE(measured(k)) << k;
@@ -1088,36 +1096,26 @@ TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfOneCame
 // triangulated from them (the flight only tells which views), however far back the hold reaches,
 // where one view alone would be placed only while the flight knows its depth to 2 cm.
 TEST_F(FrameSetTrackerTest, ATrackThatStartsTakesItsFlightsEarlierViewsOfTwoCameras) {
-  const auto ball_at = [](double t) -> Eigen::Vector3d {
-    return Eigen::Vector3d(-1.2, 0.2, 0.35) + t * Eigen::Vector3d(5.0, -0.3, 1.5) +
-           Eigen::Vector3d(0.0, 0.0, -4.9 * t * t);
-  };
   constexpr int kEarly = 4, kSets = 14;
   for (const double backfill : {FrameSetOptions{}.backfill_px, 0.0}) {
     FrameSetOptions options;
     options.backfill_px = backfill;
-    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
-    ResultHold hold(options.initiator.max_span_s);
-    std::vector<FrameSetResult> rows;
-    for (int k = 0; k < kSets; ++k) {
-      const double t = k / 120.0;
-      auto views = Frames(ball_at(t), k);
+    const std::vector<FrameSetResult> rows = HeldRows(options, kSets, 120.0, [&](int k, double t) {
+      Frames(HitBall(t), k);
+      const auto px = rig_.cameras[1].Project(HitBall(t));
+      ASSERT_TRUE(px.has_value());
       if (k < kEarly) {
-        const auto px = rig_.cameras[1].Project(ball_at(t));
-        ASSERT_TRUE(px.has_value());
         PaintOrange(1, px->x(), px->y(),
-                    SphereDiameterPx(rig_.cameras[1], ball_at(t), table::kBallRadius));
+                    SphereDiameterPx(rig_.cameras[1], HitBall(t), table::kBallRadius));
       }
-      for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
-    }
-    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    });
     ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
     for (int k = 0; k < kEarly; ++k) {
       const bool measured = rows[k].state && rows[k].state->measured;
       if (backfill > 0.0) {
         ASSERT_TRUE(measured) << k;
         EXPECT_EQ(rows[k].state->cameras, 2) << k;
-        EXPECT_LT((rows[k].state->position - ball_at(k / 120.0)).norm(), 0.005) << k;
+        EXPECT_LT((rows[k].state->position - HitBall(k / 120.0)).norm(), 0.005) << k;
       } else {
         EXPECT_FALSE(measured) << k;
       }

@@ -179,9 +179,7 @@ std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
         // (another bend may hide between them: a return stopped by the net): the chain breaks.
         if (pending_bend_ && !window_.empty() &&
             piece_.front().t - window_.back().back().t > options_.max_gap_s) {
-          pending_bend_ = false;
-          FitWindow(false);
-          ForgetChain();
+          BreakChain({});
         }
       }
     }
@@ -210,22 +208,8 @@ std::vector<FrameSetResult> MonocularSmoother::Flush() {
 }
 
 void MonocularSmoother::EndPiece(const Piece& next) {
-  // The chain breaks: what is open is fitted; `rest` (views too few to fit) keeps its rays at
-  // the distance where the flight before ended.
-  const auto break_chain = [&](const Piece& rest) {
-    pending_bend_ = false;
-    FitWindow(false);
-    if (!rest.empty()) {
-      if (lead_in_ && rest.front().t - lead_in_->after_t <= options_.max_gap_s) {
-        Continue(lead_in_->piece, rest.front().t, rest.back().t);
-      } else {
-        orphans_.push_back(rest);  // the next window may reach back to it
-      }
-    }
-    ForgetChain();
-  };
   if (static_cast<int>(piece_.size()) < options_.min_fit_views) {
-    break_chain(piece_);
+    BreakChain(piece_);
   } else {
     if (pending_bend_) DecideBend();
     window_.push_back(piece_);
@@ -233,7 +217,7 @@ void MonocularSmoother::EndPiece(const Piece& next) {
   }
   piece_ = next;
   off_.clear();
-  if (next.empty()) break_chain({});
+  if (next.empty()) BreakChain({});
 }
 
 bool MonocularSmoother::Holds(const std::optional<Stroke>& fit, double max_rms) const {
@@ -319,8 +303,7 @@ Junction MonocularSmoother::JunctionBetween(const Piece& before, const Piece& af
     const double s = (plane_z - c.z()) / d.z();
     if (s <= 0.0) continue;
     const Eigen::Vector3d p = c + s * d;
-    const bool on_table =
-        std::abs(p.x()) <= table::kHalfLength + m && std::abs(p.y()) <= table::kHalfWidth + m;
+    const bool on_table = table::OnSurface(p.x(), p.y(), m);
     if (on_table != (plane_z == r)) continue;  // the table top only on the table, the floor off it
     // The diameters of a ball blurred in a long exposure read short (its streak's sides are
     // covered for less of it): their distance may be long by a share of the contact's.
@@ -372,14 +355,20 @@ void MonocularSmoother::FitWindow(bool with_open) {
   const double max_rms = has_short ? options_.max_fit_rms_short : options_.max_fit_rms;
   // A chain that starts as the ball leaves the table; else its first piece, slow and rising, is
   // the service toss (laws 2.6.2).
-  std::optional<Stroke> fit;
-  if (!lead) fit = FitFromTable(observations, guess, max_rms);
+  std::optional<Stroke> fit, alone;
+  if (!lead) {
+    alone = FitStroke(observations, guess, options_.fit);  // no contact, no toss
+    if (alone) fit = FitFromTable(observations, guess, *alone, max_rms);
+  }
   if (!fit) {
     FlightPiece& first = guess.pieces.front();
     first.toss = !lead && first.state.tail<3>().norm() < options_.toss_max_speed &&
                  PieceStateAt(first, t_first, options_.fit.model)(5) > 0.0;
     if (lead) guess.start = lead_in_junction_;
-    fit = FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
+    // A chain's first piece that is no toss was fitted alone already.
+    fit = !lead && !first.toss
+              ? alone
+              : FitStroke(observations, guess, options_.fit, lead ? &*lead_in_ : nullptr);
   }
   const double t_from = lead ? lead_in_->after_t : t_first;
   std::optional<LeadIn> next;
@@ -466,17 +455,14 @@ void MonocularSmoother::FitWindow(bool with_open) {
 
 std::optional<Stroke> MonocularSmoother::FitFromTable(
     std::span<const std::vector<BearingObservation>> observations, Stroke guess,
-    double max_rms) const {
+    const Stroke& alone, double max_rms) const {
   const std::vector<BearingObservation>& first = observations.front();
   const double t_first = first.front().t;
   // Where the flight alone (no contact, no toss) has the ball at its first view.
-  const auto alone = FitStroke(observations, guess, options_.fit);
-  if (!alone) return std::nullopt;
-  const Vector6d x = PieceStateAt(alone->pieces.front(), t_first, options_.fit.model);
+  const Vector6d x = PieceStateAt(alone.pieces.front(), t_first, options_.fit.model);
   const double r = options_.fit.model.ball_radius;
-  const double m = options_.contact_margin;
   if (!(x(5) > 0.0) || std::abs(x(2) - r) > options_.start_contact_height ||
-      std::abs(x(0)) > table::kHalfLength + m || std::abs(x(1)) > table::kHalfWidth + m) {
+      !table::OnSurface(x(0), x(1), options_.contact_margin)) {
     return std::nullopt;
   }
   // The contact was after the frame before the first view (the camera's frame period).
@@ -545,7 +531,16 @@ void MonocularSmoother::Continue(const FlightPiece& from, double t_first, double
   }
 }
 
-void MonocularSmoother::ForgetChain() {
+void MonocularSmoother::BreakChain(const Piece& rest) {
+  pending_bend_ = false;
+  FitWindow(false);
+  if (!rest.empty()) {
+    if (lead_in_ && rest.front().t - lead_in_->after_t <= options_.max_gap_s) {
+      Continue(lead_in_->piece, rest.front().t, rest.back().t);
+    } else {
+      orphans_.push_back(rest);  // the next window may reach back to it
+    }
+  }
   lead_in_.reset();
   window_.clear();
   junctions_.clear();

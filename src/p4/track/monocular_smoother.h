@@ -131,14 +131,14 @@ class MonocularSmoother {
   std::optional<Stroke> FitRun(std::span<const std::vector<BearingObservation>> observations,
                                const Stroke& guess, size_t i, size_t j, const LeadIn* lead,
                                const std::optional<Junction>& start) const;
-  // A chain that starts with no lead-in, its first piece (as the flight fitted alone places it)
-  // rising from the table top at its first view (start_contact_height, the outline and
-  // contact_margin): the ball left the table in the frame period before, a bounce whose arrival
-  // no view saw (behind the net, after a net cord, a gap in the views). The window fitted from
-  // that contact (stroke_fit.h: it anchors the diameters' scale as a bounce between pieces
-  // does) when that fit holds; else nullopt.
+  // A chain that starts with no lead-in, its first piece (as `alone`, the window fitted without
+  // contact or toss, places it) rising from the table top at its first view
+  // (start_contact_height, the outline and contact_margin): the ball left the table in the frame
+  // period before, a bounce whose arrival no view saw (behind the net, after a net cord, a gap in
+  // the views). The window fitted from that contact (stroke_fit.h: it anchors the diameters'
+  // scale as a bounce between pieces does) when that fit holds; else nullopt.
   std::optional<Stroke> FitFromTable(std::span<const std::vector<BearingObservation>> observations,
-                                     Stroke guess, double max_rms) const;
+                                     Stroke guess, const Stroke& alone, double max_rms) const;
   // The fit explains the bearings within max_rms and the diameters (max_distance_error).
   bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
@@ -146,8 +146,10 @@ class MonocularSmoother {
   // flight next to them (`from`, before or after) has there (the ball cannot be far from where
   // it was a moment ago).
   void Continue(const FlightPiece& from, double t_first, double t_last);
-  // The chain is broken (what it held is fitted already): no lead-in, window or junctions.
-  void ForgetChain();
+  // The chain breaks: what is open is fitted; `rest` (views too few to fit) keeps its rays at
+  // the distance where the flight before ended (or waits as an orphan); no lead-in, window or
+  // junctions remain.
+  void BreakChain(const Piece& rest);
   // A view that is no view of the ball's flight (off every piece at a bend): its row is no
   // measurement (the filter's place stays, unless a fit later spans it).
   static void Unmeasure(FrameSetResult* result);
