@@ -279,6 +279,12 @@ int Run(TrackArgs a) {
   // auto: the background detector for a white ball (colour alone cannot single it out among
   // lines, lamps and walls), the colour tables for the others (docs/DECISIONS.md, Detection).
   options.use_background = a.detector == "background" || (a.detector == "auto" && white);
+  // The long-term background (a player who stood still and stepped away leaves no ghost to hide
+  // the ball in) where the background is the detector. The colour tables' helpers (a floor of
+  // the ball's colour split on the background, webcams' faint streaks) keep the short-term model
+  // their thresholds were chosen with: with the long-term one, the players it brings back are
+  // pieces of a ball-coloured floor's colour too (mono tuning 3: 15.9 -> 253 mm).
+  options.background.long_term = options.use_background;
   if (a.filter == "paper") options.tracker.kalman.noise = track::KalmanOptions::Noise::kPaper;
   GameOptions game;
   game.enabled = !a.no_referee;

@@ -23,8 +23,13 @@ inline void ChromaOf(const ImageView& image, int bx, int by, float* u, float* v)
 bool BackgroundOptions::IsValid(std::string* error) const {
   if (!(learn_rate > 0.0 && learn_rate <= 1.0) ||
       !(held_learn_rate >= 0.0 && held_learn_rate <= learn_rate) ||
-      !(still_learn_rate >= held_learn_rate && still_learn_rate <= learn_rate)) {
-    if (error) *error = "background: need 0 < learn rate <= 1 and 0 <= held rate <= learn rate";
+      !(still_learn_rate >= held_learn_rate && still_learn_rate <= learn_rate) ||
+      settle_frames < 1) {
+    if (error) {
+      *error =
+          "background: need 0 < learn rate <= 1, 0 <= held rate <= still rate <= learn rate and "
+          "a settling of >= 1 frame";
+    }
     return false;
   }
   if (row_stride < 1 || row_stride > 16 || warmup_frames < 1) {
@@ -45,10 +50,13 @@ BackgroundModel::BackgroundModel(int width, int height, const BackgroundOptions&
   v_.assign(u_.size(), 128.0f);
   by_.assign(u_.size(), 16.0f);
   last_.assign(u_.size(), Yuv{});
+  ly_ = y_, lu_ = u_, lv_ = v_;
   sy_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_luma));
   sc_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_chroma));
   iy_.assign(u_.size(), 1.0f / (sy_[0] * sy_[0]));
   ic_.assign(u_.size(), 1.0f / (sc_[0] * sc_[0]));
+  lsy_ = sy_, lsc_ = sc_, lby_ = by_;
+  settling_.assign(u_.size(), 0);
 }
 
 Yuv BackgroundModel::BlockOfAnyFormat(const ImageView& image, int bx, int by) {
@@ -94,6 +102,7 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
         last_[b] = {by_[b], u_[b], v_[b]};
       }
     }
+    ly_ = y_, lu_ = u_, lv_ = v_, lby_ = by_;
     ++frames_;
     return;
   }
@@ -107,6 +116,15 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
       static_cast<float>(1.0 - std::pow(1.0 - options_.held_learn_rate, options_.row_stride));
   const auto still =
       static_cast<float>(1.0 - std::pow(1.0 - options_.still_learn_rate, options_.row_stride));
+  // The long-term model learns on every kLongPasses-th pass over the rows (it need not follow
+  // faster), at the rate of that many frames.
+  const bool long_term = options_.long_term;
+  const bool long_pass = long_term && passes_ % kLongPasses == 0;
+  const int long_frames = options_.row_stride * kLongPasses;
+  const auto long_learn =
+      static_cast<float>(1.0 - std::pow(1.0 - options_.learn_rate, long_frames));
+  const auto settle_visits =
+      static_cast<uint32_t>((options_.settle_frames + long_frames - 1) / long_frames);
   const auto floor_y = static_cast<float>(options_.min_sigma_luma);
   const auto floor_c = static_cast<float>(options_.min_sigma_chroma);
   const bool packed = image.format == PixelFormat::kYUYV;
@@ -132,13 +150,55 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
       u = 128.0f + inv * (u - 128.0f);
       v = 128.0f + inv * (v - 128.0f);
       float* model[4] = {&y_[p], &y_[p + 1], &y_[p + width_], &y_[p + width_ + 1]};
-      const float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
-                                (*model[0] + *model[1] + *model[2] + *model[3]));
-      const float du = u - u_[b], dv = v - v_[b];
-      const float z2 = dy * dy * iy_[b] + (du * du + dv * dv) * ic_[b];
-      const bool differs = z2 > k2;
-      // Unchanged since the last visit (within the noise)?
+      float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
+                          (*model[0] + *model[1] + *model[2] + *model[3]));
+      float du = u - u_[b], dv = v - v_[b];
+      bool differs = dy * dy * iy_[b] + (du * du + dv * dv) * ic_[b] > k2;
+      const bool like_short = !differs;
       const float mean_seen = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3]);
+      // The long-term model's distance, in its own noise (only where it matters: a block that
+      // differs, and the long-term model's own passes).
+      float ldy = 0.0f, ldu = 0.0f, ldv = 0.0f;
+      bool like_long = false;
+      if ((differs && long_term) || long_pass) {
+        ldy = mean_seen - lby_[b], ldu = u - lu_[b], ldv = v - lv_[b];
+        const float ily = 1.0f / (lsy_[b] * lsy_[b]), ilc = 1.0f / (lsc_[b] * lsc_[b]);
+        like_long = ldy * ldy * ily + (ldu * ldu + ldv * ldv) * ilc <= k2;
+        // The short-term model away from the long-term one (its own noise has grown while it
+        // learnt what came to rest, so the long-term one's).
+        const float sly = by_[b] - lby_[b], slu = u_[b] - lu_[b], slv = v_[b] - lv_[b];
+        const bool apart = sly * sly * ily + (slu * slu + slv * slv) * ilc > k2;
+        if (differs && apart) {
+          // What the short-term model learnt of something that rested is no longer there (the
+          // hall behind a player who stepped away, or something before it): the long-term
+          // model back.
+          for (int k = 0; k < 4; ++k) *model[k] = ly_[p + (k & 1) + (k >> 1) * width_];
+          u_[b] = lu_[b], v_[b] = lv_[b], sy_[b] = lsy_[b], sc_[b] = lsc_[b];
+          iy_[b] = ily, ic_[b] = ilc;
+          dy = ldy, du = ldu, dv = ldv;
+          differs = !like_long;
+        }
+      }
+      if (long_pass) {
+        // The long-term model learns where the frame looks like it; what looked like the
+        // short-term model only (came to rest) for settle_frames becomes it.
+        float* long_model[4] = {&ly_[p], &ly_[p + 1], &ly_[p + width_], &ly_[p + width_ + 1]};
+        if (like_long) {
+          settling_[b] = 0;
+          for (int k = 0; k < 4; ++k) *long_model[k] += long_learn * (seen[k] - *long_model[k]);
+          lu_[b] += long_learn * ldu;
+          lv_[b] += long_learn * ldv;
+          lsy_[b] = std::max(floor_y, lsy_[b] + long_learn * (1.25f * std::abs(ldy) - lsy_[b]));
+          lsc_[b] = std::max(
+              floor_c, lsc_[b] + long_learn * (0.9f * (std::abs(ldu) + std::abs(ldv)) - lsc_[b]));
+        } else if (like_short && ++settling_[b] >= settle_visits) {
+          settling_[b] = 0;
+          for (int k = 0; k < 4; ++k) *long_model[k] = *model[k];
+          lu_[b] = u_[b], lv_[b] = v_[b], lsy_[b] = sy_[b], lsc_[b] = sc_[b];
+        }
+        lby_[b] = 0.25f * (*long_model[0] + *long_model[1] + *long_model[2] + *long_model[3]);
+      }
+      // Unchanged since the last visit (within the noise)?
       const Yuv& last = last_[b];
       const float cy = mean_seen - last.y, cu = u - last.u, cv = v - last.v;
       const bool unchanged = cy * cy * iy_[b] + (cu * cu + cv * cv) * ic_[b] < k2;
@@ -159,6 +219,7 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
     }
   }
   next_row_ = (next_row_ + 1) % options_.row_stride;
+  if (next_row_ == 0) ++passes_;
   ++frames_;
 }
 

@@ -5,10 +5,18 @@
 //
 // Learning: a block that looks like the background learns at `learn_rate` per frame, one that
 // differs from it at `held_learn_rate` (so a ball held still for a serve's toss fades in over
-// seconds, not frames). Updates visit every `row_stride`-th block row per frame, in turn, so the
-// model costs a fraction of a full pass a frame. The camera's exposure (auto-exposure drift,
-// flicker) is followed by a per-frame gain estimated from the whole picture, applied to the model
-// before any comparison.
+// seconds, not frames), one that differs but stays as it was at `still_learn_rate` (a bag put
+// down). Updates visit every `row_stride`-th block row per frame, in turn, so the model costs a
+// fraction of a full pass a frame. The camera's exposure (auto-exposure drift, flicker) is
+// followed by a per-frame gain estimated from the whole picture, applied to the model before any
+// comparison.
+//
+// Two models: the short-term one above, which detection compares with, and a long-term one that
+// learns only where the frame looks like it (and takes what came to rest when it has stayed for
+// `settle_frames`). A player who stood still for a serve is learnt by the short-term model
+// within a second; when they step away, the hall behind them differs from it (a "ghost" the size
+// of a torso, which a ball before it joins and is lost in) but looks like the long-term model:
+// such a block takes the long-term model back at once (at its next visit).
 //
 // Pixel coordinates as everywhere (centres at integers); block (bx, by) covers pixels
 // 2bx..2bx+1, 2by..2by+1. Pure: the caller hands in each frame.
@@ -30,6 +38,11 @@ struct BackgroundOptions {
   // Per frame, blocks that differ but stay as they were since the last visit: something that
   // came to rest (a bag put down, a player who walked away) becomes background in seconds.
   double still_learn_rate = 0.01;
+  // The long-term model (see above); off, the short-term model alone, as before 2026-12-05.
+  bool long_term = true;
+  // Frames a block must look like the short-term model and not the long-term one (something
+  // that came to rest and stayed) before the long-term model takes it as the hall.
+  int settle_frames = 600;
   int row_stride = 8;           // block rows updated per frame: every row_stride-th
   double min_sigma_luma = 2.0;  // floors of a block's noise, 8-bit levels
   double min_sigma_chroma = 1.5;
@@ -103,8 +116,13 @@ class BackgroundModel {
   std::vector<float> sy_, sc_;  // per block: noise sigmas
   std::vector<float> iy_, ic_;  // per block: 1 / sigma^2
   std::vector<Yuv> last_;       // per block: what the last visit saw (exposure 1)
+  // The long-term model: per pixel luma, per block chroma and noise sigmas (exposure 1).
+  std::vector<float> ly_, lu_, lv_, lsy_, lsc_, lby_;  // lby_: per block mean luma
+  std::vector<uint32_t> settling_;  // per block: visits like the short-term model only
   int frames_ = 0;
   int next_row_ = 0;
+  int passes_ = 0;                       // passes over every block row
+  static constexpr int kLongPasses = 4;  // the long-term model learns on every 4th
   double gain_ = 1.0;
   float gain_f_ = 1.0f;
   std::vector<float> ratios_;  // gain estimation scratch
