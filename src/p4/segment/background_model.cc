@@ -50,13 +50,14 @@ BackgroundModel::BackgroundModel(int width, int height, const BackgroundOptions&
   v_.assign(u_.size(), 128.0f);
   by_.assign(u_.size(), 16.0f);
   last_.assign(u_.size(), Yuv{});
-  ly_ = y_, lu_ = u_, lv_ = v_;
   sy_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_luma));
   sc_.assign(u_.size(), static_cast<float>(1.5 * options.min_sigma_chroma));
   iy_.assign(u_.size(), 1.0f / (sy_[0] * sy_[0]));
   ic_.assign(u_.size(), 1.0f / (sc_[0] * sc_[0]));
-  lsy_ = sy_, lsc_ = sc_, lby_ = by_;
-  settling_.assign(u_.size(), 0);
+  if (options.long_term) {
+    ly_ = y_, lu_ = u_, lv_ = v_, lby_ = by_, lsy_ = sy_, lsc_ = sc_;
+    settling_.assign(u_.size(), 0);
+  }
 }
 
 Yuv BackgroundModel::BlockOfAnyFormat(const ImageView& image, int bx, int by) {
@@ -102,7 +103,9 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
         last_[b] = {by_[b], u_[b], v_[b]};
       }
     }
-    ly_ = y_, lu_ = u_, lv_ = v_, lby_ = by_;
+    if (options_.long_term) {
+      ly_ = y_, lu_ = u_, lv_ = v_, lby_ = by_;
+    }
     ++frames_;
     return;
   }

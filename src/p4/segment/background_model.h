@@ -116,7 +116,8 @@ class BackgroundModel {
   std::vector<float> sy_, sc_;  // per block: noise sigmas
   std::vector<float> iy_, ic_;  // per block: 1 / sigma^2
   std::vector<Yuv> last_;       // per block: what the last visit saw (exposure 1)
-  // The long-term model: per pixel luma, per block chroma and noise sigmas (exposure 1).
+  // The long-term model (empty without long_term): per pixel luma, per block chroma and noise
+  // sigmas (exposure 1).
   std::vector<float> ly_, lu_, lv_, lsy_, lsc_, lby_;  // lby_: per block mean luma
   std::vector<uint32_t> settling_;  // per block: visits like the short-term model only
   int frames_ = 0;

@@ -495,6 +495,18 @@ TEST(ForegroundScene, APlayerWhoStoodStillAndLeftLeavesNoGhost) {
   EXPECT_EQ(found, 24);
   EXPECT_LE(worst, 0.5);
 }
+
+TEST(BackgroundOptions, ValidatesItsRatesAndSettling) {
+  std::string why;
+  EXPECT_TRUE(BackgroundOptions{}.IsValid(&why)) << why;
+  BackgroundOptions o;
+  o.settle_frames = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("settling"), std::string::npos) << why;
+  o = {};
+  o.still_learn_rate = 0.5;  // faster than what looks like the background
+  EXPECT_FALSE(o.IsValid(&why));
+}
 }  // namespace
 }  // namespace p4::segment
 
