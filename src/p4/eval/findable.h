@@ -30,7 +30,13 @@ struct FindableOptions {
   double min_visibility = 0.5;  // share of the ball a camera sees for the frame to count there
   int min_views = 2;            // cameras that must see (and find) the ball
   segment::StreakSearchOptions search;
-  segment::BackgroundOptions background;
+  // The short-term model alone, as the tracker's streak search has it (the long-term model is
+  // the white ball's detector's: track_command.cc).
+  segment::BackgroundOptions background = [] {
+    segment::BackgroundOptions b;
+    b.long_term = false;
+    return b;
+  }();
 };
 
 struct FindableReport {
