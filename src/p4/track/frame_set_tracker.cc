@@ -49,6 +49,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
   }
+  if (!(backfill_px >= 0.0)) {
+    if (error) *error = "backfill_px must be at least 0 (0: no back-fill)";
+    return false;
+  }
   if (!(single_view_depth_sigma > 0.0) || !(single_view_max_depth_sigma > 0.0) ||
       !(lone_view_depth_sigma >= 0.0) || !(lone_view_gate_chi2 > 0.0) ||
       !(lone_view_image_sigma > 0.0) || !(lone_view_consistency_chi2 > 0.0)) {

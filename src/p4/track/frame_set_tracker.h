@@ -199,7 +199,8 @@ struct FrameSetOptions {
   // gravity and drag, backwards) is a view of the ball (the first frames after a hit, which one
   // camera saw and the tracklet could not take); the one nearest it is a row on its ray at the
   // flight's depth, while that depth is known to single_view_max_depth_sigma. A set with no such
-  // view, or a measured row, ends the search (the hit lies there). 0: off. Rigs of 2+ cameras.
+  // view, or a measured row, ends the search (the hit lies there). 0: off; >= 0. Rigs of 2+
+  // cameras.
   double backfill_px = 3.0;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.

@@ -1143,6 +1143,16 @@ TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   EXPECT_FALSE(o.IsValid(&why));
 }
 
+TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
+  std::string why;
+  FrameSetOptions o;
+  o.backfill_px = 0.0;  // off is allowed
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+  o.backfill_px = -1.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("backfill_px"), std::string::npos) << why;
+}
+
 // One camera's hall must hold the table (its half length 1.37 m, half width 0.7625 m).
 TEST(FrameSetOptions, TheHallMustHoldTheTable) {
   std::string why;
