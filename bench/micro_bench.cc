@@ -39,20 +39,26 @@ const I420Image& Frame(int width, int height) {
   return image;
 }
 
-// The background model's update per frame (every row_stride-th block row, in turn).
+// The background model's update per frame (every row_stride-th block row, in turn), with the
+// long-term model (lt:1, as the white ball's detector keeps it) or without.
 void BM_BackgroundUpdate(benchmark::State& state) {
   const I420Image& image =
       Frame(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  segment::BackgroundModel model(image.width(), image.height(), {});
+  segment::BackgroundOptions options;
+  options.long_term = state.range(2) != 0;
+  segment::BackgroundModel model(image.width(), image.height(), options);
   model.Update(image.View());
   for (auto _ : state) model.Update(image.View());
   state.SetItemsProcessed(state.iterations() * image.width() * image.height());
 }
 BENCHMARK(BM_BackgroundUpdate)
-    ->ArgNames({"w", "h"})
-    ->Args({640, 480})
-    ->Args({1280, 720})
-    ->Args({1920, 1080})
+    ->ArgNames({"w", "h", "lt"})
+    ->Args({640, 480, 0})
+    ->Args({640, 480, 1})
+    ->Args({1280, 720, 0})
+    ->Args({1280, 720, 1})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
     ->Unit(benchmark::kMicrosecond);
 
 // Whole-image search on the background (the ball found, unmixed and measured by coverage),

@@ -30,13 +30,8 @@ struct FindableOptions {
   double min_visibility = 0.5;  // share of the ball a camera sees for the frame to count there
   int min_views = 2;            // cameras that must see (and find) the ball
   segment::StreakSearchOptions search;
-  // The short-term model alone, as the tracker's streak search has it (the long-term model is
-  // the white ball's detector's: track_command.cc).
-  segment::BackgroundOptions background = [] {
-    segment::BackgroundOptions b;
-    b.long_term = false;
-    return b;
-  }();
+  // The short-term model alone (the default), as the tracker's streak search has it.
+  segment::BackgroundOptions background;
 };
 
 struct FindableReport {

@@ -87,12 +87,9 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
       std::vector<segment::FoundStreak> found;
       // What differs from a background learnt as the frames come (the colour alone finds
       // banners, shirts and lettering of the ball's colour; with AnyColour, motion alone).
-      // The short-term model alone: with the long-term one, webcam tuning 2's candidates set
-      // a camera in step 2.3 ms off (+- 0.9 ms) and the run lost 5 % recall; the offsets are
-      // found from many candidates, and a ghost hides few of them.
-      segment::BackgroundOptions short_term;
-      short_term.long_term = false;
-      segment::BackgroundModel background(camera.width, camera.height, short_term);
+      // (The short-term model alone: with the long-term one, webcam tuning 2's candidates set a
+      // camera in step 2.3 ms off and the run lost 5 % recall.)
+      segment::BackgroundModel background(camera.width, camera.height, {});
       segment::ForegroundFinder foreground;
       segment::SegmentOptions segment;
       segment.mask = mask;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "p4/core/robust.h"
 #include "p4/segment/pixel_access.h"
@@ -121,8 +122,7 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
       static_cast<float>(1.0 - std::pow(1.0 - options_.still_learn_rate, options_.row_stride));
   // The long-term model learns on every kLongPasses-th pass over the rows (it need not follow
   // faster), at the rate of that many frames.
-  const bool long_term = options_.long_term;
-  const bool long_pass = long_term && passes_ % kLongPasses == 0;
+  const bool long_pass = options_.long_term && passes_ % kLongPasses == 0;
   const int long_frames = options_.row_stride * kLongPasses;
   const auto long_learn =
       static_cast<float>(1.0 - std::pow(1.0 - options_.learn_rate, long_frames));
@@ -131,95 +131,105 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
   const auto floor_y = static_cast<float>(options_.min_sigma_luma);
   const auto floor_c = static_cast<float>(options_.min_sigma_chroma);
   const bool packed = image.format == PixelFormat::kYUYV;
-  for (int by = next_row_; by < bh_; by += options_.row_stride) {
-    const uint8_t* top = packed ? nullptr : image.planes[0].Row(2 * by);
-    const uint8_t* bottom = packed ? nullptr : image.planes[0].Row(2 * by + 1);
-    for (int bx = 0; bx < bw_; ++bx) {
-      const std::size_t b = Index(bx, by);
-      const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
-      // The frame brought to the model's exposure.
-      float seen[4];
-      if (packed) {
-        seen[0] = LumaAt(image, 2 * bx, 2 * by), seen[1] = LumaAt(image, 2 * bx + 1, 2 * by);
-        seen[2] = LumaAt(image, 2 * bx, 2 * by + 1);
-        seen[3] = LumaAt(image, 2 * bx + 1, 2 * by + 1);
-      } else {
-        seen[0] = top[2 * bx], seen[1] = top[2 * bx + 1];
-        seen[2] = bottom[2 * bx], seen[3] = bottom[2 * bx + 1];
-      }
-      for (float& x : seen) x = 16.0f + inv * (x - 16.0f);
-      float u = 128.0f, v = 128.0f;
-      ChromaOf(image, bx, by, &u, &v);
-      u = 128.0f + inv * (u - 128.0f);
-      v = 128.0f + inv * (v - 128.0f);
-      float* model[4] = {&y_[p], &y_[p + 1], &y_[p + width_], &y_[p + width_ + 1]};
-      float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
-                          (*model[0] + *model[1] + *model[2] + *model[3]));
-      float du = u - u_[b], dv = v - v_[b];
-      bool differs = dy * dy * iy_[b] + (du * du + dv * dv) * ic_[b] > k2;
-      const bool like_short = !differs;
-      const float mean_seen = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3]);
-      // The long-term model's distance, in its own noise (only where it matters: a block that
-      // differs, and the long-term model's own passes).
-      float ldy = 0.0f, ldu = 0.0f, ldv = 0.0f;
-      bool like_long = false;
-      if ((differs && long_term) || long_pass) {
-        ldy = mean_seen - lby_[b], ldu = u - lu_[b], ldv = v - lv_[b];
-        const float ily = 1.0f / (lsy_[b] * lsy_[b]), ilc = 1.0f / (lsc_[b] * lsc_[b]);
-        like_long = ldy * ldy * ily + (ldu * ldu + ldv * ldv) * ilc <= k2;
-        // The short-term model away from the long-term one (its own noise has grown while it
-        // learnt what came to rest, so the long-term one's).
-        const float sly = by_[b] - lby_[b], slu = u_[b] - lu_[b], slv = v_[b] - lv_[b];
-        const bool apart = sly * sly * ily + (slu * slu + slv * slv) * ilc > k2;
-        if (differs && apart) {
-          // What the short-term model learnt of something that rested is no longer there (the
-          // hall behind a player who stepped away, or something before it): the long-term
-          // model back.
-          for (int k = 0; k < 4; ++k) *model[k] = ly_[p + (k & 1) + (k >> 1) * width_];
-          u_[b] = lu_[b], v_[b] = lv_[b], sy_[b] = lsy_[b], sc_[b] = lsc_[b];
-          iy_[b] = ily, ic_[b] = ilc;
-          dy = ldy, du = ldu, dv = ldv;
-          differs = !like_long;
+  // The rows, with the long-term model's work compiled in or out (without it, the loop is the
+  // short-term model's alone, at its own speed).
+  const auto rows = [&](auto with_long_term) {
+    constexpr bool kLongTerm = decltype(with_long_term)::value;
+    for (int by = next_row_; by < bh_; by += options_.row_stride) {
+      const uint8_t* top = packed ? nullptr : image.planes[0].Row(2 * by);
+      const uint8_t* bottom = packed ? nullptr : image.planes[0].Row(2 * by + 1);
+      for (int bx = 0; bx < bw_; ++bx) {
+        const std::size_t b = Index(bx, by);
+        const std::size_t p = static_cast<std::size_t>(2 * by) * width_ + 2 * bx;
+        // The frame brought to the model's exposure.
+        float seen[4];
+        if (packed) {
+          seen[0] = LumaAt(image, 2 * bx, 2 * by), seen[1] = LumaAt(image, 2 * bx + 1, 2 * by);
+          seen[2] = LumaAt(image, 2 * bx, 2 * by + 1);
+          seen[3] = LumaAt(image, 2 * bx + 1, 2 * by + 1);
+        } else {
+          seen[0] = top[2 * bx], seen[1] = top[2 * bx + 1];
+          seen[2] = bottom[2 * bx], seen[3] = bottom[2 * bx + 1];
         }
-      }
-      if (long_pass) {
-        // The long-term model learns where the frame looks like it; what looked like the
-        // short-term model only (came to rest) for settle_frames becomes it.
-        float* long_model[4] = {&ly_[p], &ly_[p + 1], &ly_[p + width_], &ly_[p + width_ + 1]};
-        if (like_long) {
-          settling_[b] = 0;
-          for (int k = 0; k < 4; ++k) *long_model[k] += long_learn * (seen[k] - *long_model[k]);
-          lu_[b] += long_learn * ldu;
-          lv_[b] += long_learn * ldv;
-          lsy_[b] = std::max(floor_y, lsy_[b] + long_learn * (1.25f * std::abs(ldy) - lsy_[b]));
-          lsc_[b] = std::max(
-              floor_c, lsc_[b] + long_learn * (0.9f * (std::abs(ldu) + std::abs(ldv)) - lsc_[b]));
-        } else if (like_short && ++settling_[b] >= settle_visits) {
-          settling_[b] = 0;
-          for (int k = 0; k < 4; ++k) *long_model[k] = *model[k];
-          lu_[b] = u_[b], lv_[b] = v_[b], lsy_[b] = sy_[b], lsc_[b] = sc_[b];
+        for (float& x : seen) x = 16.0f + inv * (x - 16.0f);
+        float u = 128.0f, v = 128.0f;
+        ChromaOf(image, bx, by, &u, &v);
+        u = 128.0f + inv * (u - 128.0f);
+        v = 128.0f + inv * (v - 128.0f);
+        float* model[4] = {&y_[p], &y_[p + 1], &y_[p + width_], &y_[p + width_ + 1]};
+        float dy = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3] -
+                            (*model[0] + *model[1] + *model[2] + *model[3]));
+        float du = u - u_[b], dv = v - v_[b];
+        bool differs = dy * dy * iy_[b] + (du * du + dv * dv) * ic_[b] > k2;
+        const bool like_short = !differs;
+        const float mean_seen = 0.25f * (seen[0] + seen[1] + seen[2] + seen[3]);
+        // The long-term model's distance, in its own noise (only where it matters: a block that
+        // differs, and the long-term model's own passes).
+        float ldy = 0.0f, ldu = 0.0f, ldv = 0.0f;
+        bool like_long = false;
+        if (kLongTerm && (differs || long_pass)) {
+          ldy = mean_seen - lby_[b], ldu = u - lu_[b], ldv = v - lv_[b];
+          const float ily = 1.0f / (lsy_[b] * lsy_[b]), ilc = 1.0f / (lsc_[b] * lsc_[b]);
+          like_long = ldy * ldy * ily + (ldu * ldu + ldv * ldv) * ilc <= k2;
+          // The short-term model away from the long-term one (its own noise has grown while it
+          // learnt what came to rest, so the long-term one's).
+          const float sly = by_[b] - lby_[b], slu = u_[b] - lu_[b], slv = v_[b] - lv_[b];
+          const bool apart = sly * sly * ily + (slu * slu + slv * slv) * ilc > k2;
+          if (differs && apart) {
+            // What the short-term model learnt of something that rested is no longer there (the
+            // hall behind a player who stepped away, or something before it): the long-term
+            // model back.
+            for (int k = 0; k < 4; ++k) *model[k] = ly_[p + (k & 1) + (k >> 1) * width_];
+            u_[b] = lu_[b], v_[b] = lv_[b], sy_[b] = lsy_[b], sc_[b] = lsc_[b];
+            iy_[b] = ily, ic_[b] = ilc;
+            dy = ldy, du = ldu, dv = ldv;
+            differs = !like_long;
+          }
         }
-        lby_[b] = 0.25f * (*long_model[0] + *long_model[1] + *long_model[2] + *long_model[3]);
+        if (kLongTerm && long_pass) {
+          // The long-term model learns where the frame looks like it; what looked like the
+          // short-term model only (came to rest) for settle_frames becomes it.
+          float* long_model[4] = {&ly_[p], &ly_[p + 1], &ly_[p + width_], &ly_[p + width_ + 1]};
+          if (like_long) {
+            settling_[b] = 0;
+            for (int k = 0; k < 4; ++k) *long_model[k] += long_learn * (seen[k] - *long_model[k]);
+            lu_[b] += long_learn * ldu;
+            lv_[b] += long_learn * ldv;
+            lsy_[b] = std::max(floor_y, lsy_[b] + long_learn * (1.25f * std::abs(ldy) - lsy_[b]));
+            lsc_[b] = std::max(
+                floor_c, lsc_[b] + long_learn * (0.9f * (std::abs(ldu) + std::abs(ldv)) - lsc_[b]));
+          } else if (like_short && ++settling_[b] >= settle_visits) {
+            settling_[b] = 0;
+            for (int k = 0; k < 4; ++k) *long_model[k] = *model[k];
+            lu_[b] = u_[b], lv_[b] = v_[b], lsy_[b] = sy_[b], lsc_[b] = sc_[b];
+          }
+          lby_[b] = 0.25f * (*long_model[0] + *long_model[1] + *long_model[2] + *long_model[3]);
+        }
+        // Unchanged since the last visit (within the noise)?
+        const Yuv& last = last_[b];
+        const float cy = mean_seen - last.y, cu = u - last.u, cv = v - last.v;
+        const bool unchanged = cy * cy * iy_[b] + (cu * cu + cv * cv) * ic_[b] < k2;
+        last_[b] = {mean_seen, u, v};
+        const bool kept = !keep.empty() && 2 * bx + 1 >= keep.x0 && 2 * bx < keep.x1 &&
+                          2 * by + 1 >= keep.y0 && 2 * by < keep.y1;
+        const float rate = kept && differs ? held : (!differs ? learn : (unchanged ? still : held));
+        for (int k = 0; k < 4; ++k) *model[k] += rate * (seen[k] - *model[k]);
+        u_[b] += rate * du;
+        v_[b] += rate * dv;
+        // Mean absolute deviation x 1.25 ~ sigma, for a Gaussian (slowly where something differs,
+        // so that a noisier block than the model thought is learnt in the end).
+        sy_[b] = std::max(floor_y, sy_[b] + rate * (1.25f * std::abs(dy) - sy_[b]));
+        sc_[b] = std::max(floor_c, sc_[b] + rate * (0.9f * (std::abs(du) + std::abs(dv)) - sc_[b]));
+        by_[b] = 0.25f * (*model[0] + *model[1] + *model[2] + *model[3]);
+        iy_[b] = 1.0f / (sy_[b] * sy_[b]);
+        ic_[b] = 1.0f / (sc_[b] * sc_[b]);
       }
-      // Unchanged since the last visit (within the noise)?
-      const Yuv& last = last_[b];
-      const float cy = mean_seen - last.y, cu = u - last.u, cv = v - last.v;
-      const bool unchanged = cy * cy * iy_[b] + (cu * cu + cv * cv) * ic_[b] < k2;
-      last_[b] = {mean_seen, u, v};
-      const bool kept = !keep.empty() && 2 * bx + 1 >= keep.x0 && 2 * bx < keep.x1 &&
-                        2 * by + 1 >= keep.y0 && 2 * by < keep.y1;
-      const float rate = kept && differs ? held : (!differs ? learn : (unchanged ? still : held));
-      for (int k = 0; k < 4; ++k) *model[k] += rate * (seen[k] - *model[k]);
-      u_[b] += rate * du;
-      v_[b] += rate * dv;
-      // Mean absolute deviation x 1.25 ~ sigma, for a Gaussian (slowly where something differs,
-      // so that a noisier block than the model thought is learnt in the end).
-      sy_[b] = std::max(floor_y, sy_[b] + rate * (1.25f * std::abs(dy) - sy_[b]));
-      sc_[b] = std::max(floor_c, sc_[b] + rate * (0.9f * (std::abs(du) + std::abs(dv)) - sc_[b]));
-      by_[b] = 0.25f * (*model[0] + *model[1] + *model[2] + *model[3]);
-      iy_[b] = 1.0f / (sy_[b] * sy_[b]);
-      ic_[b] = 1.0f / (sc_[b] * sc_[b]);
     }
+  };
+  if (options_.long_term) {
+    rows(std::true_type{});
+  } else {
+    rows(std::false_type{});
   }
   next_row_ = (next_row_ + 1) % options_.row_stride;
   if (next_row_ == 0) ++passes_;

@@ -38,8 +38,11 @@ struct BackgroundOptions {
   // Per frame, blocks that differ but stay as they were since the last visit: something that
   // came to rest (a bag put down, a player who walked away) becomes background in seconds.
   double still_learn_rate = 0.01;
-  // The long-term model (see above); off, the short-term model alone, as before 2026-12-05.
-  bool long_term = true;
+  // The long-term model (see above); off, the short-term model alone. On only where the
+  // background is the detector (track_command.cc: a white ball, --detector background); the
+  // colour tables' helpers, the colour learner, the offset search and the findable ceiling keep
+  // the short-term model their thresholds were chosen with (docs/DECISIONS.md, "Detection").
+  bool long_term = false;
   // Frames a block must look like the short-term model and not the long-term one (something
   // that came to rest and stayed) before the long-term model takes it as the hall.
   int settle_frames = 600;

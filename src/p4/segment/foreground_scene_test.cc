@@ -452,6 +452,9 @@ TEST(ForegroundScene, APlayerWhoStoodStillAndLeftLeavesNoGhost) {
   // player gone. The short-term model learnt the player; the hall behind them differs from it by
   // a torso's area, which the ball joined and was lost in: the long-term model is taken back.
   Scene scene(sim::PresetLook("white"), 640, 360, 1);
+  BackgroundOptions with_long_term;
+  with_long_term.long_term = true;
+  scene.background() = BackgroundModel(640, 360, with_long_term);
   const Eigen::Vector2d stance(-2.25, -0.3), away(-2.25, -1.6);
   scene.PlacePlayer(away);
   scene.Learn(60);
