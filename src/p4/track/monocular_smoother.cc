@@ -134,6 +134,7 @@ std::optional<MonocularSmoother::View> MonocularSmoother::Adopt(
 
 std::vector<FrameSetResult> MonocularSmoother::Push(FrameSetResult result) {
   held_.push_back(std::move(result));
+  placed_.push_back(0);
   // Where the open piece's path is at this time (with 4 views or more).
   const std::optional<Eigen::Vector2d> path = PathAt(piece_, ToSeconds(held_.back().t));
   const std::optional<View> view = Adopt(&held_.back(), path);
@@ -502,9 +503,11 @@ std::optional<Stroke> MonocularSmoother::FitRun(
 
 void MonocularSmoother::Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from,
                               double t_to) {
-  for (FrameSetResult& r : held_) {
+  for (std::size_t i = 0; i < held_.size(); ++i) {
+    FrameSetResult& r = held_[i];
     const double t = ToSeconds(r.t);
     if (t < t_from - 1e-9 || t > t_to + 1e-9 || (lead_in && t <= t_from + 1e-9)) continue;
+    placed_[i] = 1;
     const FlightModel& m = options_.fit.model;
     const Vector6d x = lead_in && stroke.start && t < stroke.start->t
                            ? PieceStateAt(*lead_in, t, m, options_.fit.max_step)
@@ -561,8 +564,12 @@ void MonocularSmoother::Unmeasure(double t) {
 std::vector<FrameSetResult> MonocularSmoother::Release(double before_t) {
   std::vector<FrameSetResult> out;
   while (!held_.empty() && ToSeconds(held_.front().t) < before_t - 1e-9) {
+    if (!placed_.front() && !options_.unplaced_rows_measured && held_.front().measurement) {
+      Unmeasure(&held_.front());
+    }
     out.push_back(std::move(held_.front()));
     held_.pop_front();
+    placed_.pop_front();
   }
   return out;
 }

@@ -82,6 +82,13 @@ struct MonocularSmootherOptions {
   // A chain that starts slower than this (m/s, mid-piece) and rising starts with the service
   // toss: fitted without spin.
   double toss_max_speed = 4.0;
+  // A row that no fit placed (its window did not hold, a piece too short to fit, the chain cut
+  // by a gap) keeps the filter's state, or the distance of the flight next to it (Continue):
+  // its depth is the diameters' alone (a few per cent of the distance, ~10 cm at 4 m) or an
+  // extrapolation (after a hit in the gap, the flight before it carried on). It stays a row but
+  // is no measurement. True: such rows stay measurements (as before 2026-12-05;
+  // docs/DECISIONS.md).
+  bool unplaced_rows_measured = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -144,7 +151,8 @@ class MonocularSmoother {
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the
   // flight next to them (`from`, before or after) has there (the ball cannot be far from where
-  // it was a moment ago).
+  // it was a moment ago). Rows, not measurements (unplaced_rows_measured): that flight may have
+  // been hit in the gap.
   void Continue(const FlightPiece& from, double t_first, double t_last);
   // The chain breaks: what is open is fitted; `rest` (views too few to fit) keeps its rays at
   // the distance where the flight before ended (or waits as an orphan); no lead-in, window or
@@ -159,6 +167,7 @@ class MonocularSmoother {
   Camera camera_;
   MonocularSmootherOptions options_;
   std::deque<FrameSetResult> held_;
+  std::deque<char> placed_;          // per held row: a fit placed it (Apply)
   std::vector<Piece> window_;        // finished pieces since the last bounce
   std::vector<Junction> junctions_;  // after each of them (the last: before the open piece)
   Piece piece_;                      // the open piece
