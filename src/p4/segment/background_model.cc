@@ -19,6 +19,25 @@ inline void ChromaOf(const ImageView& image, int bx, int by, float* u, float* v)
   *u = cu, *v = cv;
 }
 
+// A block's model moved towards what is seen at `rate`: its four pixels' luma, its chroma by
+// (du, dv) (what is seen minus the model) and its noise sigmas (mean absolute deviation x 1.25 ~
+// sigma, for a Gaussian), not below their floors. The short-term and the long-term model learn
+// alike.
+inline void LearnBlock(float* const model[4], const float seen[4], float dy, float du, float dv,
+                       float rate, float floor_y, float floor_c, float* u, float* v, float* sy,
+                       float* sc) {
+  for (int k = 0; k < 4; ++k) *model[k] += rate * (seen[k] - *model[k]);
+  *u += rate * du;
+  *v += rate * dv;
+  *sy = std::max(floor_y, *sy + rate * (1.25f * std::abs(dy) - *sy));
+  *sc = std::max(floor_c, *sc + rate * (0.9f * (std::abs(du) + std::abs(dv)) - *sc));
+}
+
+// The block's mean luma.
+inline float MeanOf(float* const model[4]) {
+  return 0.25f * (*model[0] + *model[1] + *model[2] + *model[3]);
+}
+
 }  // namespace
 
 bool BackgroundOptions::IsValid(std::string* error) const {
@@ -192,18 +211,14 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
           float* long_model[4] = {&ly_[p], &ly_[p + 1], &ly_[p + width_], &ly_[p + width_ + 1]};
           if (like_long) {
             settling_[b] = 0;
-            for (int k = 0; k < 4; ++k) *long_model[k] += long_learn * (seen[k] - *long_model[k]);
-            lu_[b] += long_learn * ldu;
-            lv_[b] += long_learn * ldv;
-            lsy_[b] = std::max(floor_y, lsy_[b] + long_learn * (1.25f * std::abs(ldy) - lsy_[b]));
-            lsc_[b] = std::max(
-                floor_c, lsc_[b] + long_learn * (0.9f * (std::abs(ldu) + std::abs(ldv)) - lsc_[b]));
+            LearnBlock(long_model, seen, ldy, ldu, ldv, long_learn, floor_y, floor_c, &lu_[b],
+                       &lv_[b], &lsy_[b], &lsc_[b]);
           } else if (like_short && ++settling_[b] >= settle_visits) {
             settling_[b] = 0;
             for (int k = 0; k < 4; ++k) *long_model[k] = *model[k];
             lu_[b] = u_[b], lv_[b] = v_[b], lsy_[b] = sy_[b], lsc_[b] = sc_[b];
           }
-          lby_[b] = 0.25f * (*long_model[0] + *long_model[1] + *long_model[2] + *long_model[3]);
+          lby_[b] = MeanOf(long_model);
         }
         // Unchanged since the last visit (within the noise)?
         const Yuv& last = last_[b];
@@ -213,14 +228,11 @@ void BackgroundModel::Update(const ImageView& image, const Roi& keep) {
         const bool kept = !keep.empty() && 2 * bx + 1 >= keep.x0 && 2 * bx < keep.x1 &&
                           2 * by + 1 >= keep.y0 && 2 * by < keep.y1;
         const float rate = kept && differs ? held : (!differs ? learn : (unchanged ? still : held));
-        for (int k = 0; k < 4; ++k) *model[k] += rate * (seen[k] - *model[k]);
-        u_[b] += rate * du;
-        v_[b] += rate * dv;
-        // Mean absolute deviation x 1.25 ~ sigma, for a Gaussian (slowly where something differs,
-        // so that a noisier block than the model thought is learnt in the end).
-        sy_[b] = std::max(floor_y, sy_[b] + rate * (1.25f * std::abs(dy) - sy_[b]));
-        sc_[b] = std::max(floor_c, sc_[b] + rate * (0.9f * (std::abs(du) + std::abs(dv)) - sc_[b]));
-        by_[b] = 0.25f * (*model[0] + *model[1] + *model[2] + *model[3]);
+        // (Slowly where something differs, so that a noisier block than the model thought is
+        // learnt in the end.)
+        LearnBlock(model, seen, dy, du, dv, rate, floor_y, floor_c, &u_[b], &v_[b], &sy_[b],
+                   &sc_[b]);
+        by_[b] = MeanOf(model);
         iy_[b] = 1.0f / (sy_[b] * sy_[b]);
         ic_[b] = 1.0f / (sc_[b] * sc_[b]);
       }
