@@ -809,7 +809,12 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
   const SmoothedState s0 = SmoothSteps(steps)[first];
   const KalmanOptions& kalman = tracker_options_.kalman;
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  // The flight carried back set by set (x, p: a backward filter). Each set of two views or more
+  // that it takes corrects it, so a set further back is judged by the sets already taken, not
+  // by the first state alone (a toss started from three points knows its depth 1-2 frames back
+  // only to ~5 cm; after the sets before it, to millimetres).
   Vector6d x = s0.state;
+  Matrix6d p = s0.covariance;
   TimeNs at = s0.t;
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
@@ -823,14 +828,13 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
     const int n_steps = static_cast<int>(std::ceil(ToSeconds(at - set->t) / 0.004));
     const double h = ToSeconds(set->t - at) / std::max(1, n_steps);
     for (int k = 0; k < n_steps; ++k) x = DragStep(x, h, kalman.gravity, kalman.drag_per_mass);
+    // The covariance carried back (uniform motion: the position's spread grows with the
+    // velocity's).
+    Matrix6d f = Matrix6d::Identity();
+    f.topRightCorner<3, 3>() = ToSeconds(set->t - at) * Eigen::Matrix3d::Identity();
+    p = f * p * f.transpose();
     at = set->t;
-    // The first state's covariance carried back (uniform motion: the position's spread grows with
-    // the velocity's).
-    const double dt = ToSeconds(set->t - s0.t);
-    const Matrix6d& p0 = s0.covariance;
-    const Eigen::Matrix3d position_covariance =
-        p0.topLeftCorner<3, 3>() + dt * (p0.topRightCorner<3, 3>() + p0.bottomLeftCorner<3, 3>()) +
-        dt * dt * p0.bottomRightCorner<3, 3>();
+    const Eigen::Matrix3d position_covariance = p.topLeftCorner<3, 3>();
     // Each camera's view nearest the flight, within backfill_px.
     std::vector<int> nearest(rig_.size(), -1);
     std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
@@ -859,6 +863,12 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
       if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) break;
       views.estimate = *estimate;
       r.measurement = ToMeasurement(views);
+      // The flight corrected by the point (a Kalman update of the position).
+      const Eigen::Matrix3d innovation = position_covariance + r.measurement.covariance;
+      const Eigen::Matrix<double, 6, 3> gain = p.leftCols<3>() * innovation.inverse();
+      x += gain * (r.measurement.position - x.head<3>());
+      p -= gain * p.topRows<3>();
+      p = 0.5 * (p + p.transpose());
     } else {
       // One: on its ray at the flight's depth, while the flight knows that depth.
       const Detection& d = set->detections[r.accepted.front()];

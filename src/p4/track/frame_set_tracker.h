@@ -196,11 +196,11 @@ struct FrameSetOptions {
   // When a track starts (a confirmed tracklet adopted), the sets of the hold before its flight's
   // first point that have no measured row are looked at again, newest first: in each, a camera's
   // view within backfill_px of the flight carried back to that time (the smoothed first state,
-  // gravity and drag, backwards) is a view of the ball (the first frames after a hit, which one
-  // camera saw and the tracklet could not take); the one nearest it is a row on its ray at the
-  // flight's depth, while that depth is known to single_view_max_depth_sigma. A set with no such
-  // view, or a measured row, ends the search (the hit lies there). 0: off; >= 0. Rigs of 2+
-  // cameras.
+  // gravity and drag, backwards; corrected by each earlier set it takes of two views or more) is
+  // a view of the ball (the first frames after a hit, which one camera saw and the tracklet
+  // could not take); the one nearest it is a row on its ray at the flight's depth, while that
+  // depth is known to single_view_max_depth_sigma. A set with no such view, or a measured row,
+  // ends the search (the hit lies there). 0: off; >= 0. Rigs of 2+ cameras.
   double backfill_px = 3.0;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
