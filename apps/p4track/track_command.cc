@@ -218,6 +218,13 @@ int Run(TrackArgs a) {
                     : a.streaks == "off" ? track::FrameSetOptions::Streaks::kOff
                                          : track::FrameSetOptions::Streaks::kAuto;
   segment::BallColour::Named(a.ball, &options.ball_colour);
+  // A file a learning run saved gives the ball's colour as well: the run is the same again.
+  if (!a.classes.empty()) {
+    if (const auto ball = ReadBallColour(a.classes)) {
+      options.ball_colour = *ball;
+      white = ball->IsWhite();
+    }
+  }
   if (choose) {
     // Not white: the background model it needs takes whatever moves for the ball (an arm, a
     // shirt), which flies in one camera's view as often as the ball does.
@@ -260,7 +267,7 @@ int Run(TrackArgs a) {
       options.ball_colour = learnt.colour.ball;
       white = learnt.colour.ball.IsWhite();
       const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
-      WriteColorClasses(classes, saved);
+      WriteColorClasses(classes, saved, &learnt.colour.ball);
       const segment::Yuv& lit = learnt.colour.ball.lit;
       spdlog::info(
           "learnt the ball's colour from {} views in {} tracks ({:.1f} s): lit YUV {:.0f} {:.0f} "
@@ -376,7 +383,9 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
       ->excludes(rig)
       ->excludes(out)
       ->excludes(sources);
-  cmd->add_option("--classes", args->classes, "Colour classes file (YAML); default: --ball's")
+  cmd->add_option("--classes", args->classes,
+                  "Colour classes file (YAML; a run's ball_classes.yaml also gives the ball's lit "
+                  "colour); default: --ball's")
       ->check(CLI::ExistingFile);
   cmd->add_option("--ball", args->ball,
                   "Ball colour when no --classes; auto: learnt from the recordings' first seconds "

@@ -52,7 +52,30 @@ segment::ColorClassSet ReadColorClasses(const std::string& path) {
   return ReadYamlFile(path, [&] { return ParseColorClasses(path); });
 }
 
-void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path) {
+std::optional<segment::BallColour> ReadBallColour(const std::string& path) {
+  return ReadYamlFile(path, [&]() -> std::optional<segment::BallColour> {
+    const YAML::Node root = LoadYamlMap(path);
+    const YAML::Node lit = root["ball_lit"];
+    if (!lit.IsDefined()) return std::nullopt;
+    if (!lit.IsSequence() || lit.size() != 3) {
+      throw Error(path + ": 'ball_lit' must be [y, u, v] (8-bit levels)");
+    }
+    double level[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+      if (!YamlNumber(lit[k], &level[k]) || !(level[k] >= 0.0 && level[k] <= 255.0)) {
+        throw Error(fmt::format("{}: ball_lit[{}]: '{}' is not a level in 0-255", path, k,
+                                lit[k].IsScalar() ? lit[k].Scalar() : std::string("?")));
+      }
+    }
+    segment::BallColour ball;
+    ball.lit = {static_cast<float>(level[0]), static_cast<float>(level[1]),
+                static_cast<float>(level[2])};
+    return ball;
+  });
+}
+
+void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path,
+                       const segment::BallColour* ball) {
   cv::FileStorage fs(path, cv::FileStorage::WRITE);
   if (!fs.isOpened()) throw Error(path + ": cannot create the file");
   fs << "classes"
@@ -69,6 +92,10 @@ void WriteColorClasses(const segment::ColorClassSet& classes, const std::string&
        << "}";
   }
   fs << "]";
+  if (ball) {
+    fs << "ball_lit"
+       << "[" << ball->lit.y << ball->lit.u << ball->lit.v << "]";
+  }
 }
 
 }  // namespace p4

@@ -1,11 +1,17 @@
 // Colour classes on disk: YAML (or JSON) through OpenCV FileStorage,
 //   classes:
 //     - { name: ball_bright, y: [125, 240], u: [50, 100], v: [180, 240] }
-// Names starting with "ball" make up the tracked ball.
+// Names starting with "ball" make up the tracked ball. A file that a run learnt (`track --ball
+// auto`) also gives the ball's lit colour (segment/ball_colour.h: 8-bit YUV, BT.601 limited
+// range), which the background model's measures and the faint streak search use and which says
+// whether the ball is white; optional:
+//   ball_lit: [137, 65, 200]
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "p4/segment/ball_colour.h"
 #include "p4/segment/color_classes.h"
 
 namespace p4 {
@@ -13,6 +19,11 @@ namespace p4 {
 // Throws p4::Error naming the file, the class and the field: missing file, empty or corrupt
 // file, no class, a bound outside 0-255 or reversed, more than 32 classes, no "ball" class.
 segment::ColorClassSet ReadColorClasses(const std::string& path);
-void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path);
+// The file's ball_lit (nullopt without it). Throws p4::Error naming the file and the value: not
+// three numbers, a level outside 0-255.
+std::optional<segment::BallColour> ReadBallColour(const std::string& path);
+// `ball`: written as ball_lit when given.
+void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path,
+                       const segment::BallColour* ball = nullptr);
 
 }  // namespace p4
