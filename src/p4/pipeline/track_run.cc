@@ -209,7 +209,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   // Stopped while waiting for a source to come back: Next() returned at the stop.
   if (extras.stop && extras.stop->load()) summary.stopped = true;
   if (hold) {
-    for (auto& r : hold->Flush()) smooth(std::move(r));
+    for (auto& r : hold->Flush(tracker.Finish())) smooth(std::move(r));
   }
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);

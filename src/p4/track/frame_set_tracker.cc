@@ -898,6 +898,20 @@ void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* re
       [&](TimeNs t) { return std::find(taken_.begin(), taken_.end(), t) == taken_.end(); }, result);
 }
 
+std::vector<Revision> FrameSetTracker::Finish() {
+  if (rig_.size() < 2 || !options_.confirm_tracks || past_.empty()) return {};
+  if (last_taken_t_ && *last_taken_t_ == past_.back().t) return {};
+  const std::optional<Tracklet> flight = initiator_.Finish();
+  if (!flight) return {};
+  FrameSetResult result;
+  BallTracker replay(tracker_options_);
+  ReplayPoints(
+      *flight, flight->flight_start, flight->points.size(), &replay,
+      [&](TimeNs t) { return std::find(taken_.begin(), taken_.end(), t) == taken_.end(); },
+      &result);
+  return std::move(result.revisions);
+}
+
 int FrameSetTracker::SpotAt(int camera, const Eigen::Vector2d& pixel) const {
   const auto& spots = static_spots_[camera];
   for (int i = 0; i < static_cast<int>(spots.size()); ++i) {

@@ -295,6 +295,11 @@ class FrameSetTracker {
   // triangulated: the 3D measurement is at t.
   FrameSetResult Process(TimeNs t, std::span<const std::optional<ImageView>> images,
                          std::span<const TimeNs> times = {});
+  // At the end of the recording (rigs of 2+ cameras): a flight the initiator could not confirm
+  // for want of the sets after it (TrackInitiator::Finish), when the track did not take the last
+  // set, becomes rows: revisions of the time-stamps the track did not take, for
+  // ResultHold::Flush. Empty otherwise.
+  std::vector<Revision> Finish();
 
   const BallTracker& tracker() const { return tracker_; }
   // Camera c's background model (empty unless a detector keeps one), as of the last Process.

@@ -83,8 +83,10 @@ class FrameSetTrackerTest : public RenderedRigTest {
 
   // The rows a tracker with `options` writes through the hold (as RunTracking does) for `sets`
   // frame sets at `fps`, each camera's picture of set k rendered by paint(k, t) into frames_.
+  // The recording's end as RunTracking has it (FrameSetTracker::Finish) unless `finish` is false.
   std::vector<FrameSetResult> HeldRows(const FrameSetOptions& options, int sets, double fps,
-                                       const std::function<void(int, double)>& paint) {
+                                       const std::function<void(int, double)>& paint,
+                                       bool finish = true) {
     FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
     ResultHold hold(options.initiator.max_span_s);
     std::vector<FrameSetResult> rows;
@@ -95,7 +97,9 @@ class FrameSetTrackerTest : public RenderedRigTest {
       for (I420Image& f : frames_) views.push_back(f.View());
       for (auto& r : hold.Push(tracker.Process(FromSeconds(t), views))) rows.push_back(r);
     }
-    for (auto& r : hold.Flush()) rows.push_back(std::move(r));
+    for (auto& r : hold.Flush(finish ? tracker.Finish() : std::vector<Revision>{})) {
+      rows.push_back(std::move(r));
+    }
     return rows;
   }
 };
@@ -1151,6 +1155,37 @@ TEST_F(FrameSetTrackerTest, TheEarlierSetsOfTwoViewsTellTheDepthOfTheOnesBefore)
     EXPECT_EQ(rows[k].state->cameras, k < kOne ? 1 : 2) << k;
     EXPECT_LT((rows[k].state->position - HitBall(k / 120.0)).norm(), 0.005) << k;
   }
+}
+
+// A ball hit just before the recording ends: both cameras see its last 3 sets, one short of the
+// 4 that confirm a flight. At the end (FrameSetTracker::Finish, as RunTracking calls it) a
+// tracklet of 3 two-view points that travels and fits one flight is the ball: its sets are rows.
+// Without the end's rule they were none; a still spot seen in the last sets is still none.
+TEST_F(FrameSetTrackerTest, AFlightCutShortByTheRecordingsEndIsRows) {
+  constexpr int kSets = 12, kSeen = 3;
+  for (const bool finish : {true, false}) {
+    const std::vector<FrameSetResult> rows = HeldRows(
+        FrameSetOptions{}, kSets, 60.0,
+        [&](int k, double t) {
+          Frames(k >= kSets - kSeen ? std::optional<Eigen::Vector3d>(HitBall(t)) : std::nullopt, k);
+        },
+        finish);
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
+    for (int k = kSets - kSeen; k < kSets; ++k) {
+      const bool measured = rows[k].state && rows[k].state->measured;
+      EXPECT_EQ(measured, finish) << k;
+      if (measured) {
+        EXPECT_EQ(rows[k].state->cameras, 2) << k;
+        EXPECT_LT((rows[k].state->position - HitBall(k / 60.0)).norm(), 0.005) << k;
+      }
+    }
+  }
+  // A ball lying still for the last sets: no travel, no flight.
+  const std::vector<FrameSetResult> still =
+      HeldRows(FrameSetOptions{}, kSets, 60.0, [&](int k, double /*t*/) {
+        Frames(k >= kSets - kSeen ? std::optional<Eigen::Vector3d>(HitBall(0.0)) : std::nullopt, k);
+      });
+  for (const FrameSetResult& r : still) EXPECT_FALSE(r.state && r.state->measured);
 }
 
 TEST(FrameSetOptions, LoneViewBoundsAreChecked) {

@@ -19,8 +19,8 @@ FrameSetResult ResultHold::Final(FrameSetResult result) {
   return result;
 }
 
-std::vector<FrameSetResult> ResultHold::Push(FrameSetResult result) {
-  for (Revision& r : result.revisions) {
+void ResultHold::Apply(const std::vector<Revision>& revisions) {
+  for (const Revision& r : revisions) {
     const auto it = std::find_if(held_.begin(), held_.end(),
                                  [&](const FrameSetResult& h) { return h.t == r.t; });
     if (it == held_.end()) {
@@ -36,6 +36,10 @@ std::vector<FrameSetResult> ResultHold::Push(FrameSetResult result) {
     }
     ++revised_;
   }
+}
+
+std::vector<FrameSetResult> ResultHold::Push(FrameSetResult result) {
+  Apply(result.revisions);
   result.revisions.clear();
   const TimeNs newest = result.t;
   held_.push_back(std::move(result));
@@ -47,7 +51,8 @@ std::vector<FrameSetResult> ResultHold::Push(FrameSetResult result) {
   return out;
 }
 
-std::vector<FrameSetResult> ResultHold::Flush() {
+std::vector<FrameSetResult> ResultHold::Flush(const std::vector<Revision>& revisions) {
+  Apply(revisions);
   std::vector<FrameSetResult> out;
   for (auto& r : held_) out.push_back(Final(std::move(r)));
   held_.clear();

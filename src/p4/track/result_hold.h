@@ -21,14 +21,15 @@ class ResultHold {
   // Takes a result (time-stamps increasing), applies its revisions to the held ones; returns the
   // results now final, oldest first.
   std::vector<FrameSetResult> Push(FrameSetResult result);
-  // Every held result, final.
-  std::vector<FrameSetResult> Flush();
+  // Every held result, final, after `revisions` (the tracker's last: FrameSetTracker::Finish).
+  std::vector<FrameSetResult> Flush(const std::vector<Revision>& revisions = {});
 
   int revised() const { return revised_; }  // time-stamps a revision reached
   int missed() const { return missed_; }    // revisions that came after their time-stamp left
 
  private:
   static FrameSetResult Final(FrameSetResult result);
+  void Apply(const std::vector<Revision>& revisions);
 
   TimeNs hold_;
   std::deque<FrameSetResult> held_;

@@ -163,11 +163,14 @@ bool TrackInitiator::FitsOneFlight(std::span<const TrackletPoint> points) const 
   return WithinOne(Residuals(points));
 }
 
-bool TrackInitiator::Confirmed(const Tracklet& tracklet) const {
+bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
   const auto& points = tracklet.points;
   const int n = static_cast<int>(points.size());
   const bool long_enough =
       n >= options_.confirm_points ||
+      (at_end && n >= options_.min_confirm_points &&
+       std::all_of(points.begin(), points.end(),
+                   [](const TrackletPoint& p) { return p.measurement.cameras >= 2; })) ||
       (n >= options_.min_confirm_points &&
        ToSeconds(points.back().t - points.front().t) >= options_.confirm_span_s &&
        std::all_of(points.begin(), points.end(), [](const TrackletPoint& p) { return p.streak; }));
@@ -310,6 +313,20 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
     return false;
   };
   std::erase_if(tracklets_, shares);
+  return confirmed;
+}
+
+std::optional<Tracklet> TrackInitiator::Finish() {
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
+    const Tracklet& k = tracklets_[i];
+    if (!last_t_ || k.points.back().t != *last_t_ || !Confirmed(k, true)) continue;
+    if (best < 0 || k.points.size() > tracklets_[best].points.size()) best = i;
+  }
+  if (best < 0) return std::nullopt;
+  Tracklet confirmed = std::move(tracklets_[best]);
+  tracklets_.clear();
+  confirmed.flight_start = FlightStart(confirmed);
   return confirmed;
 }
 

@@ -117,6 +117,11 @@ class TrackInitiator {
   // kept. Its last point is one of `candidates`.
   std::optional<Tracklet> Push(TimeNs t, std::span<const TrackletPoint> candidates);
 
+  // At the end of the recording: the longest tracklet that ended at the last time-stamp pushed
+  // and would have confirmed but for the points that never came (min_confirm_points, each of two
+  // views or more, its travel and one flight as Push asks); it is handed over.
+  std::optional<Tracklet> Finish();
+
   void Clear() { tracklets_.clear(); }
   int size() const { return static_cast<int>(tracklets_.size()); }
 
@@ -129,7 +134,8 @@ class TrackInitiator {
     Eigen::Vector3d radii;
   };
   Gate Predict(const Tracklet& tracklet, TimeNs t) const;
-  bool Confirmed(const Tracklet& tracklet) const;
+  // `at_end`: the recording ended (Finish).
+  bool Confirmed(const Tracklet& tracklet, bool at_end = false) const;
   // The points' distances from the best flight through them, in units of fit_tolerance plus
   // fit_sigmas of their noise; whether they fit it (RMS within 1).
   Eigen::VectorXd Residuals(std::span<const TrackletPoint> points) const;
