@@ -713,7 +713,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
   for (const Revision& r : result.revisions) {
-    if (t - r.t <= hold && std::find(taken_.begin(), taken_.end(), r.t) == taken_.end()) {
+    if (t - r.t <= hold && !Taken(r.t)) {
       taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
     }
   }
@@ -820,8 +820,8 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
     // A row measured then, or made one since (a lone view placed, this adoption's flight before
     // the hit): the flight before.
-    const bool revised = std::find(taken_.begin(), taken_.end(), set->t) != taken_.end() ||
-                         std::any_of(result->revisions.begin(), result->revisions.end(),
+    const bool revised =
+        Taken(set->t) || std::any_of(result->revisions.begin(), result->revisions.end(),
                                      [&](const Revision& r) { return r.t == set->t; });
     if (result->t - set->t > hold || set->measured || revised) break;
     // Carried back in steps of at most 4 ms (the midpoint rule: well under a millimetre).
@@ -892,10 +892,18 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
 }
 
 void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {
+  ReviseUntaken(tracklet, tracklet.points.size() - 1, result);
+}
+
+void FrameSetTracker::ReviseUntaken(const Tracklet& tracklet, std::size_t end,
+                                    FrameSetResult* result) const {
   BallTracker replay(tracker_options_);
   ReplayPoints(
-      tracklet, tracklet.flight_start, tracklet.points.size() - 1, &replay,
-      [&](TimeNs t) { return std::find(taken_.begin(), taken_.end(), t) == taken_.end(); }, result);
+      tracklet, tracklet.flight_start, end, &replay, [&](TimeNs t) { return !Taken(t); }, result);
+}
+
+bool FrameSetTracker::Taken(TimeNs t) const {
+  return std::find(taken_.begin(), taken_.end(), t) != taken_.end();
 }
 
 std::vector<Revision> FrameSetTracker::Finish() {
@@ -904,11 +912,7 @@ std::vector<Revision> FrameSetTracker::Finish() {
   const std::optional<Tracklet> flight = initiator_.Finish();
   if (!flight) return {};
   FrameSetResult result;
-  BallTracker replay(tracker_options_);
-  ReplayPoints(
-      *flight, flight->flight_start, flight->points.size(), &replay,
-      [&](TimeNs t) { return std::find(taken_.begin(), taken_.end(), t) == taken_.end(); },
-      &result);
+  ReviseUntaken(*flight, flight->points.size(), &result);
   return std::move(result.revisions);
 }
 

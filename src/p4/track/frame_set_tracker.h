@@ -392,6 +392,11 @@ class FrameSetTracker {
   // measurement and the tracklet's last points): the points of that flight the filter refused
   // (not in taken_) become revisions, their states from a filter replaying the flight.
   void ReviseRefused(const Tracklet& tracklet, FrameSetResult* result);
+  // The tracklet's points from its flight_start up to (not including) `end` replayed into a
+  // fresh filter: revisions of those the track did not take (ReviseRefused, Finish).
+  void ReviseUntaken(const Tracklet& tracklet, std::size_t end, FrameSetResult* result) const;
+  // The track took a measurement at t (within the hold).
+  bool Taken(TimeNs t) const;
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
   // Not a view that stood still where the track is predicted to move (`moving`, per camera;

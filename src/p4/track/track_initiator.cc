@@ -292,11 +292,15 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
         [](const Tracklet& a, const Tracklet& b) { return a.points.size() > b.points.size(); });
     tracklets_.resize(options_.max_tracklets);
   }
+  return TakeConfirmed(t, false);
+}
+
+std::optional<Tracklet> TrackInitiator::TakeConfirmed(TimeNs t, bool at_end) {
   // The longest confirmed tracklet that ends at t.
   int best = -1;
   for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
     const Tracklet& k = tracklets_[i];
-    if (k.points.back().t != t || !Confirmed(k)) continue;
+    if (k.points.back().t != t || !Confirmed(k, at_end)) continue;
     if (best < 0 || k.points.size() > tracklets_[best].points.size()) best = i;
   }
   if (best < 0) return std::nullopt;
@@ -317,16 +321,9 @@ std::optional<Tracklet> TrackInitiator::Push(TimeNs t, std::span<const TrackletP
 }
 
 std::optional<Tracklet> TrackInitiator::Finish() {
-  int best = -1;
-  for (int i = 0; i < static_cast<int>(tracklets_.size()); ++i) {
-    const Tracklet& k = tracklets_[i];
-    if (!last_t_ || k.points.back().t != *last_t_ || !Confirmed(k, true)) continue;
-    if (best < 0 || k.points.size() > tracklets_[best].points.size()) best = i;
-  }
-  if (best < 0) return std::nullopt;
-  Tracklet confirmed = std::move(tracklets_[best]);
-  tracklets_.clear();
-  confirmed.flight_start = FlightStart(confirmed);
+  if (!last_t_) return std::nullopt;
+  std::optional<Tracklet> confirmed = TakeConfirmed(*last_t_, true);
+  if (confirmed) tracklets_.clear();
   return confirmed;
 }
 

@@ -136,6 +136,9 @@ class TrackInitiator {
   Gate Predict(const Tracklet& tracklet, TimeNs t) const;
   // `at_end`: the recording ended (Finish).
   bool Confirmed(const Tracklet& tracklet, bool at_end = false) const;
+  // The longest tracklet ending at t that is Confirmed(at_end), taken out with its flight_start
+  // set, and with the tracklets that share a point with it (the same ball, a step behind).
+  std::optional<Tracklet> TakeConfirmed(TimeNs t, bool at_end);
   // The points' distances from the best flight through them, in units of fit_tolerance plus
   // fit_sigmas of their noise; whether they fit it (RMS within 1).
   Eigen::VectorXd Residuals(std::span<const TrackletPoint> points) const;
