@@ -815,6 +815,9 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
   // only to ~5 cm; after the sets before it, to millimetres).
   Vector6d x = s0.state;
   Matrix6d p = s0.covariance;
+  KalmanOptions measured = kalman;
+  measured.noise = KalmanOptions::Noise::kAcceleration;  // the points' own covariances
+  KalmanFilter backward(measured);
   TimeNs at = s0.t;
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
@@ -863,12 +866,11 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
       if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) break;
       views.estimate = *estimate;
       r.measurement = ToMeasurement(views);
-      // The flight corrected by the point (a Kalman update of the position).
-      const Eigen::Matrix3d innovation = position_covariance + r.measurement.covariance;
-      const Eigen::Matrix<double, 6, 3> gain = p.leftCols<3>() * innovation.inverse();
-      x += gain * (r.measurement.position - x.head<3>());
-      p -= gain * p.topRows<3>();
-      p = 0.5 * (p + p.transpose());
+      // The flight corrected by the point (the filter's update, with the point's covariance).
+      backward.Reset(x, p);
+      backward.Update(r.measurement.position, r.measurement.covariance);
+      x = backward.state();
+      p = backward.covariance();
     } else {
       // One: on its ray at the flight's depth, while the flight knows that depth.
       const Detection& d = set->detections[r.accepted.front()];
