@@ -46,6 +46,23 @@ double ColourDistance(const double* a, const double* b, double chroma_weight) {
                    chroma_weight * ((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
 }
 
+bool ShadeOptions::IsValid(std::string* error) const {
+  if (!(symmetric_px >= 0.0) || !(max_share >= 0.0 && max_share < 1.0)) {
+    if (error) *error = "shade: symmetric_px must be at least 0 and max_share in [0, 1)";
+    return false;
+  }
+  return true;
+}
+
+void UnshadeCentre(double width_px, const double faint[2], double expected_px,
+                   const ShadeOptions& options, double* cx, double* cy) {
+  if (!(expected_px > 0.0) || (faint[0] == 0.0 && faint[1] == 0.0)) return;
+  const double lost = std::clamp(expected_px - width_px - options.symmetric_px, 0.0,
+                                 options.max_share * expected_px);
+  *cx += 0.5 * lost * faint[0];
+  *cy += 0.5 * lost * faint[1];
+}
+
 namespace {
 
 // Samples along a ray from (cx, cy): n colours (Y, U, V) at o.step_px apart. False when the
@@ -124,6 +141,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   std::vector<double> colours(3 * static_cast<std::size_t>(n) * o.directions), profile, ring;
   std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
   std::vector<double> d(static_cast<std::size_t>(half)), extent(d.size());
+  std::vector<double> contrast(static_cast<std::size_t>(o.directions));  // inside each edge
   std::vector<uint8_t> use(d.size());
   // The rays' directions: i and i + half are opposite.
   std::vector<double> ux(static_cast<std::size_t>(o.directions)), uy(ux.size());
@@ -165,7 +183,16 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
       }
       // A ray whose end lies on something else (a line, a shadow) takes the ring's colour.
       if (nearest > o.min_contrast) background = median;
-      return EdgeOnRay(c, n, background, radius, o, &profile);
+      const double found = EdgeOnRay(c, n, background, radius, o, &profile);
+      // The ray's contrast inside the edge (for EdgeCentre::faint).
+      if (found > 0.0) {
+        const int k0 = static_cast<int>(std::ceil(found / 3.0 / o.step_px));
+        const int k1 = std::min(n - 1, static_cast<int>(2.0 * found / 3.0 / o.step_px));
+        double sum = 0.0;
+        for (int k = k0; k <= k1; ++k) sum += profile[static_cast<std::size_t>(k)];
+        contrast[static_cast<std::size_t>(r)] = k1 >= k0 ? sum / (k1 - k0 + 1) : 0.0;
+      }
+      return found;
     };
     for (int i = 0; i < half; ++i) {
       const double r1 = edge(i), r2 = edge(i + half);
@@ -243,6 +270,25 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     }
   }
   for (double& channel : out.colour) channel /= std::max(1, count);
+  // The faint side: the agreeing pairs' contrasts as a + b cos + c sin, by least squares.
+  Eigen::Matrix3d contrast_normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d contrast_rhs = Eigen::Vector3d::Zero();
+  int agreeing = 0;
+  for (int i = 0; i < half; ++i) {
+    if (!use[static_cast<std::size_t>(i)]) continue;
+    ++agreeing;
+    for (const int r : {i, i + half}) {
+      const auto j = static_cast<std::size_t>(r);
+      const Eigen::Vector3d row(1.0, ux[j], uy[j]);
+      contrast_normal += row * row.transpose();
+      contrast_rhs += row * contrast[j];
+    }
+  }
+  if (agreeing >= 3) {
+    const Eigen::Vector3d f = contrast_normal.ldlt().solve(contrast_rhs);
+    const double b = std::hypot(f(1), f(2));
+    if (b > 0.0) out.faint[0] = -f(1) / b, out.faint[1] = -f(2) / b;
+  }
   out.cx = cx, out.cy = cy;
   return out;
 }

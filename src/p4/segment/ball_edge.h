@@ -56,6 +56,13 @@ struct EdgeCentre {
   // The ball's colour (Y, U, V: the mean of the last rays' samples within half the minor
   // radius of where they started).
   double colour[3] = {0.0, 0.0, 0.0};
+  // The side where the ball differs least from the background: each agreeing ray's colour
+  // distance from its background between a third and two thirds of the way to its edge, fitted
+  // as a + b cos(t) + c sin(t) over the rays' directions t; `faint` = -(b, c) / |(b, c)| (a unit
+  // image direction; zero when fewer than 3 pairs agreed). A shaded half whose level nears the
+  // floor's is where the half-level edge comes early (MeasureEdgeCentre's rule): the centre
+  // found lies away from it and the width found is short by what that side lost.
+  double faint[2] = {0.0, 0.0};
 };
 
 // The colour (Y, U, V) at (x, y), bilinear: luma at full resolution, chroma from its
@@ -65,6 +72,20 @@ bool ColourAt(const ImageView& image, double x, double y, double out[3]);
 // The distance of two colours (Y, U, V) as the edge fit measures contrast: luma, and chroma
 // weighted by chroma_weight (squared).
 double ColourDistance(const double* a, const double* b, double chroma_weight);
+
+// The centre of an edge fit moved back towards its faint side (EdgeCentre::faint) where its
+// width is short of the ball's known width there (expected_px: from the point 2+ views place
+// it at): by half of what was lost, less symmetric_px (the half-level contour of a blurred disc
+// lies inside its edge on every side), at most max_share of expected_px (more is a hidden or
+// merged view, not shade). The centre as it was without a faint side or an expected width.
+struct ShadeOptions {
+  double symmetric_px = 0.3;
+  double max_share = 0.25;
+
+  bool IsValid(std::string* error) const;
+};
+void UnshadeCentre(double width_px, const double faint[2], double expected_px,
+                   const ShadeOptions& options, double* cx, double* cy);
 
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a
 // radius; `radius_px`: the ball's radius guess (half the region's major axis for a streak).

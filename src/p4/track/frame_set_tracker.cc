@@ -30,7 +30,8 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     return false;
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
-      !edge.IsValid(error) || !streak.IsValid(error) || !streak_finder.IsValid(error)) {
+      !edge.IsValid(error) || !shade.IsValid(error) || !streak.IsValid(error) ||
+      !streak_finder.IsValid(error)) {
     return false;
   }
   if (!(split_max_moving >= 0.0 && split_max_moving <= 1.0) || !(split_max_elongation >= 1.0)) {
@@ -493,6 +494,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
         d.pixel = {e->cx, e->cy};
         if (EdgeGivesDiameter(*e, options_.edge_diameter_max_elongation)) {
           d.diameter_px = e->minor_diameter;
+          d.faint = {e->faint[0], e->faint[1]};
         }
       }
     }
@@ -958,6 +960,15 @@ void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
   std::erase_if(spots, [](const StaticSpot& s) { return s.count <= 0; });
 }
 
+Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expected_px) const {
+  Eigen::Vector2d centre = view.pixel;
+  if (options_.shade_correction) {
+    segment::UnshadeCentre(view.diameter_px, view.faint.data(), expected_px, options_.shade,
+                           &centre.x(), &centre.y());
+  }
+  return centre;
+}
+
 bool FrameSetTracker::SizeFits(double diameter_px, double expected_px) const {
   if (!(expected_px > 0.0)) return false;
   const double ratio = diameter_px / expected_px;
@@ -1035,6 +1046,14 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
             h.size_misfit += std::abs(std::log(ratio));
           }
           if (!sized) continue;
+          if (options_.shade_correction) {
+            std::vector<Observation> shaded;
+            for (const auto& [c, m] : h.members) {
+              shaded.push_back(
+                  {c, ShadedCentre(candidates[c][m], ExpectedDiameterPx(rig_.cameras[c], q))});
+            }
+            if (auto e = TriangulateObservations(rig_.cameras, shaded)) h.estimate = *e;
+          }
           out.push_back(std::move(h));
         }
       }
@@ -1312,7 +1331,9 @@ std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
       if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;
       LoneView lone;
       lone.id = {c, k};
-      lone.ray = camera.RayDirection(d.pixel);
+      // (The view's centre moved back from its faint side by the width it lost against the
+      // ball's at the predicted point.)
+      lone.ray = camera.RayDirection(ShadedCentre(d, expected));
       lone.depth_sigma = std::sqrt(lone.ray.dot(predicted_covariance * lone.ray));
       // The view fixes the ball's direction; its depth along the ray comes from the filter's
       // prediction, which beats the diameter's (paper §3.2: "error-prone")...

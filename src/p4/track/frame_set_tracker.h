@@ -104,6 +104,12 @@ struct FrameSetOptions {
   // dark half, the edges do not; a streak's edges are drawn in by its thinner ends (at 1 diameter
   // of blur by 7 %), so a longer shape keeps the moments' diameter. 0: never.
   double edge_diameter_max_elongation = 1.3;
+  // A shaded ball's edge comes early where its shaded half nears the background's level, and
+  // the centre found leans to the lit half (rows 2-4 mm high under lamps): where 2+ views fix
+  // the point, each view's width short of the ball's there tells how much its faint side lost
+  // (ShadedCentre), and the point is triangulated again from the centres moved back.
+  bool shade_correction = true;
+  segment::ShadeOptions shade;
   segment::EdgeCentreOptions edge;
   // Beyond the paper: a background model per camera; once it is ready the ball is what differs
   // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
@@ -237,6 +243,9 @@ struct Detection {
   bool cut = false;
   // Its diameter is the coverage sum on the background: the whole disc, its shaded part too.
   bool by_coverage = false;
+  // Centre and diameter from the ball's edge, which came early on this side (unit image
+  // direction, segment::EdgeCentre::faint; zero when not known): FrameSetTracker::ShadedCentre.
+  Eigen::Vector2d faint = Eigen::Vector2d::Zero();
   // Found outside the window a coasting track's prediction would have searched (roi_max_missed):
   // with 2+ cameras for a new track only, never a measurement of the coasting one (whose grown
   // gate would take a hand or a shirt anywhere in the image).
@@ -359,6 +368,10 @@ class FrameSetTracker {
   // Whether a view of diameter_px may be the ball where expected_px is its expected diameter
   // (max_size_ratio, min_fragment_ratio).
   bool SizeFits(double diameter_px, double expected_px) const;
+  // The view's centre moved back from its faint side (segment::UnshadeCentre, options shade)
+  // where expected_px is the ball's width at the point its views place it; its own centre
+  // without a faint side or with shade_correction off.
+  Eigen::Vector2d ShadedCentre(const Detection& view, double expected_px) const;
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
   // A fragment's small views measured again by the ball's edge at the size the hypothesis
