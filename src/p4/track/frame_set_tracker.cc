@@ -680,6 +680,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       n > 1 && std::any_of(used.begin(), used.end(), [&](const std::pair<int, int>& v) {
         return candidates[v.first][v.second].outside;
       });
+  const bool was_tracking = tracker_.tracking();
   if (!confirming || tracker_.tracking()) {
     result.state = tracker_.Step(t, outside ? std::optional<Measurement>() : result.measurement);
   }
@@ -718,6 +719,18 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     if (t - r.t <= hold && !Taken(r.t)) {
       taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
     }
+  }
+  // A track that ended, or that a confirmed flight replaced, after predictions past its last
+  // measurement: those rows were a path no view confirmed (the flight before a hit carried on
+  // through the racket, or past the recording's end): dropped, but for the time-stamps the new
+  // flight's revisions took.
+  if (confirming && n >= 2 && (started || (was_tracking && !tracker_.tracking()))) {
+    DropCoasted(&result);
+  }
+  if (result.state && !result.state->measured && tracker_.tracking() && !started) {
+    coasted_.push_back(t);
+  } else if (result.state && result.state->measured) {
+    coasted_.clear();
   }
   if (result.state && result.state->measured) {
     taken_.push_back(t);
@@ -913,11 +926,30 @@ bool FrameSetTracker::Taken(TimeNs t) const {
 std::vector<Revision> FrameSetTracker::Finish() {
   if (rig_.size() < 2 || !options_.confirm_tracks || past_.empty()) return {};
   if (last_taken_t_ && *last_taken_t_ == past_.back().t) return {};
-  const std::optional<Tracklet> flight = initiator_.Finish();
-  if (!flight) return {};
   FrameSetResult result;
-  ReviseUntaken(*flight, flight->points.size(), &result);
+  if (const std::optional<Tracklet> flight = initiator_.Finish()) {
+    ReviseUntaken(*flight, flight->points.size(), &result);
+    for (const Revision& r : result.revisions) {
+      taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
+    }
+  }
+  // The recording ended while the track coasted: its predictions past the last measurement go.
+  DropCoasted(&result);
   return std::move(result.revisions);
+}
+
+void FrameSetTracker::DropCoasted(FrameSetResult* result) {
+  std::vector<Revision> drops;
+  for (const TimeNs c : coasted_) {
+    if (Taken(c)) continue;
+    Revision r;
+    r.t = c;
+    r.drop = true;
+    drops.push_back(std::move(r));
+  }
+  coasted_.clear();
+  // Oldest first, before the revisions that give time-stamps a measured state.
+  result->revisions.insert(result->revisions.begin(), drops.begin(), drops.end());
 }
 
 int FrameSetTracker::SpotAt(int camera, const Eigen::Vector2d& pixel) const {

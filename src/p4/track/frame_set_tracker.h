@@ -272,6 +272,10 @@ struct Revision {
   Measurement measurement;
   TrackedState state;
   std::vector<int> accepted;  // indices into that time-stamp's detections
+  // No ball here after all: the time-stamp's state was the track's prediction past its last
+  // measurement, and the track ended (or a new flight replaced it) without another: the state
+  // goes (the other fields are not used).
+  bool drop = false;
 };
 
 struct FrameSetResult {
@@ -408,6 +412,9 @@ class FrameSetTracker {
   // The tracklet's points from its flight_start up to (not including) `end` replayed into a
   // fresh filter: revisions of those the track did not take (ReviseRefused, Finish).
   void ReviseUntaken(const Tracklet& tracklet, std::size_t end, FrameSetResult* result) const;
+  // Revision::drop for each coasted_ time-stamp the track did not take (a revision may have
+  // given it a measured state), before the result's other revisions; coasted_ cleared.
+  void DropCoasted(FrameSetResult* result);
   // The track took a measurement at t (within the hold).
   bool Taken(TimeNs t) const;
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
@@ -505,6 +512,9 @@ class FrameSetTracker {
   std::vector<WaitingView> waiting_;  // lone views whose rows wait for the smoother, oldest first
   std::deque<TimeNs> fixes_;          // the time-stamps of the hold whose two views the track took
   std::deque<TimeNs> taken_;          // the time-stamps of the hold whose measurement it took
+  // The time-stamps since the track's last measurement whose states are its predictions: dropped
+  // (Revision::drop) when the track ends or is replaced without another measurement.
+  std::vector<TimeNs> coasted_;
   // The sets of the hold: their views (as in FrameSetResult::detections) and whether their row
   // was a measurement, for BackFill.
   struct PastSet {

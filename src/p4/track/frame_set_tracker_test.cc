@@ -1188,6 +1188,66 @@ TEST_F(FrameSetTrackerTest, AFlightCutShortByTheRecordingsEndIsRows) {
   for (const FrameSetResult& r : still) EXPECT_FALSE(r.state && r.state->measured);
 }
 
+// Rows past a track's last measurement are its predictions: kept where a later measurement
+// took the track on (the missed sets filled), dropped where the track ended without one (coasted
+// out, or the recording ended): no view confirmed that path (after a hit it runs on through the
+// racket).
+TEST_F(FrameSetTrackerTest, PredictionsPastTheTracksLastMeasurementAreNoRows) {
+  constexpr int kSeen = 12;
+  const auto measured = [](const FrameSetResult& r) { return r.state && r.state->measured; };
+  // Hidden for 3 sets on the same flight, then seen again: the gap is filled.
+  const std::vector<FrameSetResult> gap =
+      HeldRows(FrameSetOptions{}, 20, 60.0, [&](int k, double t) {
+        const bool hidden = k >= kSeen && k < kSeen + 3;
+        Frames(hidden ? std::nullopt : std::optional<Eigen::Vector3d>(HitBall(t)), k);
+      });
+  ASSERT_EQ(gap.size(), 20u);
+  for (int k = kSeen; k < kSeen + 3; ++k) {
+    ASSERT_TRUE(gap[k].state.has_value()) << k;
+    EXPECT_FALSE(gap[k].state->measured) << k;
+    EXPECT_LT((gap[k].state->position - HitBall(k / 60.0)).norm(), 0.01) << k;
+  }
+  EXPECT_TRUE(measured(gap[kSeen + 3]));
+  // Gone for good: the track coasts 0.15 s and ends (30 sets), or the recording ends first (16
+  // sets, with Finish): the sets after the last view have no row.
+  for (const int sets : {30, 16}) {
+    const std::vector<FrameSetResult> rows =
+        HeldRows(FrameSetOptions{}, sets, 60.0, [&](int k, double t) {
+          Frames(k < kSeen ? std::optional<Eigen::Vector3d>(HitBall(t)) : std::nullopt, k);
+        });
+    ASSERT_EQ(rows.size(), static_cast<size_t>(sets));
+    EXPECT_TRUE(measured(rows[kSeen - 1])) << sets;
+    for (int k = kSeen; k < sets; ++k) EXPECT_FALSE(rows[k].state.has_value()) << sets << " " << k;
+  }
+  // Without Finish the recording's end leaves the coasted rows (Finish drops them).
+  const std::vector<FrameSetResult> unfinished = HeldRows(
+      FrameSetOptions{}, 16, 60.0,
+      [&](int k, double t) {
+        Frames(k < kSeen ? std::optional<Eigen::Vector3d>(HitBall(t)) : std::nullopt, k);
+      },
+      false);
+  EXPECT_TRUE(unfinished[kSeen].state.has_value());
+}
+
+TEST(ResultHold, ADropRevisionTakesTheRowAway) {
+  ResultHold hold(1.0);
+  FrameSetResult first;
+  first.t = FromSeconds(0.0);
+  first.state = TrackedState{};
+  EXPECT_TRUE(hold.Push(first).empty());
+  FrameSetResult second;
+  second.t = FromSeconds(0.1);
+  Revision drop;
+  drop.t = first.t;
+  drop.drop = true;
+  second.revisions.push_back(drop);
+  EXPECT_TRUE(hold.Push(second).empty());
+  const std::vector<FrameSetResult> out = hold.Flush();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_FALSE(out[0].state.has_value());
+  EXPECT_EQ(hold.revised(), 1);
+}
+
 TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   std::string why;
   EXPECT_TRUE(FrameSetOptions{}.IsValid(&why)) << why;

@@ -27,6 +27,11 @@ void ResultHold::Apply(const std::vector<Revision>& revisions) {
       ++missed_;
       continue;
     }
+    ++revised_;
+    if (r.drop) {
+      it->state.reset();
+      continue;
+    }
     it->measurement = r.measurement;
     it->state = r.state;
     it->tentative = false;
@@ -34,7 +39,6 @@ void ResultHold::Apply(const std::vector<Revision>& revisions) {
     for (int i : r.accepted) {
       if (i >= 0 && i < static_cast<int>(it->detections.size())) it->detections[i].accepted = true;
     }
-    ++revised_;
   }
 }
 
