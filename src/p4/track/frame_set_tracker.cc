@@ -715,11 +715,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (started && n >= 2) BackFill(confirmed->points[confirmed->flight_start].t, &result);
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
-  for (const Revision& r : result.revisions) {
-    if (t - r.t <= hold && !Taken(r.t)) {
-      taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
-    }
-  }
+  NoteTaken(t, result.revisions);
   // A track that ended, or that a confirmed flight replaced, after predictions past its last
   // measurement: those rows were a path no view confirmed (the flight before a hit carried on
   // through the racket, or past the recording's end): dropped, but for the time-stamps the new
@@ -729,10 +725,9 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   if (result.state && !result.state->measured && tracker_.tracking() && !started) {
     coasted_.push_back(t);
-  } else if (result.state && result.state->measured) {
-    coasted_.clear();
   }
   if (result.state && result.state->measured) {
+    coasted_.clear();
     taken_.push_back(t);
     last_taken_t_ = t;
     if (!result.tentative && result.measurement && result.measurement->cameras >= 2) {
@@ -923,15 +918,22 @@ bool FrameSetTracker::Taken(TimeNs t) const {
   return std::find(taken_.begin(), taken_.end(), t) != taken_.end();
 }
 
+void FrameSetTracker::NoteTaken(TimeNs now, const std::vector<Revision>& revisions) {
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  for (const Revision& r : revisions) {
+    if (now - r.t <= hold && !Taken(r.t)) {
+      taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
+    }
+  }
+}
+
 std::vector<Revision> FrameSetTracker::Finish() {
   if (rig_.size() < 2 || !options_.confirm_tracks || past_.empty()) return {};
   if (last_taken_t_ && *last_taken_t_ == past_.back().t) return {};
   FrameSetResult result;
   if (const std::optional<Tracklet> flight = initiator_.Finish()) {
     ReviseUntaken(*flight, flight->points.size(), &result);
-    for (const Revision& r : result.revisions) {
-      taken_.insert(std::upper_bound(taken_.begin(), taken_.end(), r.t), r.t);
-    }
+    NoteTaken(past_.back().t, result.revisions);
   }
   // The recording ended while the track coasted: its predictions past the last measurement go.
   DropCoasted(&result);
@@ -1066,8 +1068,10 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           // The ball's known size (paper §3.2) at the point found: a head, a shirt or a speck of
           // noise that happens to meet an epipolar line is the wrong size in some view.
           bool sized = true;
+          std::vector<Observation> shaded;  // the views' centres moved back from shade
           for (const auto& [c, m] : h.members) {
             const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
+            shaded.push_back({c, ShadedCentre(candidates[c][m], expected)});
             if (!SizeFits(candidates[c][m].diameter_px, expected)) {
               sized = false;
               break;
@@ -1079,11 +1083,6 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           }
           if (!sized) continue;
           if (options_.shade_correction) {
-            std::vector<Observation> shaded;
-            for (const auto& [c, m] : h.members) {
-              shaded.push_back(
-                  {c, ShadedCentre(candidates[c][m], ExpectedDiameterPx(rig_.cameras[c], q))});
-            }
             if (auto e = TriangulateObservations(rig_.cameras, shaded)) h.estimate = *e;
           }
           out.push_back(std::move(h));

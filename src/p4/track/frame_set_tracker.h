@@ -417,6 +417,8 @@ class FrameSetTracker {
   void DropCoasted(FrameSetResult* result);
   // The track took a measurement at t (within the hold).
   bool Taken(TimeNs t) const;
+  // The revisions' time-stamps within the hold of `now` join taken_ (in order, once).
+  void NoteTaken(TimeNs now, const std::vector<Revision>& revisions);
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
   // Not a view that stood still where the track is predicted to move (`moving`, per camera;
