@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.h"
 #include "p4/core/error.h"
@@ -96,12 +97,12 @@ TrackArgs ResumedArgs(const std::string& dir, bool* finished) {
 // Cameras whose clocks the rig does not give are synchronised from the ball before tracking
 // (recordings of two or more cameras); the clocks found are saved as rig_synced.yaml in the run's
 // folder. A rig that gives them, one camera, live sources or --no-sync: as the rig says.
-Rig SyncIfNeeded(const TrackArgs& a, Rig rig) {
+Rig SyncIfNeeded(const TrackArgs& a, const std::optional<ColorClassFile>& file, Rig rig) {
   const bool unknown = std::any_of(rig.cameras.begin() + 1, rig.cameras.end(),
                                    [](const Camera& c) { return !c.clock.has_offset; });
   const bool live = std::any_of(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
   if (a.no_sync || rig.size() < 2 || !unknown || live) return rig;
-  const segment::ColorClassSet classes = !a.classes.empty() ? ReadColorClasses(a.classes)
+  const segment::ColorClassSet classes = file               ? file->classes
                                          : a.ball == "auto" ? segment::AnyColour()
                                                             : segment::NamedBall(a.ball);
   BallCandidateOptions candidates;
@@ -181,10 +182,13 @@ int Run(TrackArgs a) {
     if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
     WriteRunJson(a, false);
   }
-  const Rig rig = SyncIfNeeded(a, ReadRig(a.rig));
-  bool learn = a.classes.empty() && a.ball == "auto";
-  segment::ColorClassSet classes =
-      !a.classes.empty() ? ReadColorClasses(a.classes) : segment::NamedBall(a.ball);
+  Rig read_rig = ReadRig(a.rig);
+  // --classes: its classes, and the ball's colour when a learning run saved the file.
+  const std::optional<ColorClassFile> file =
+      a.classes.empty() ? std::nullopt : std::optional(ReadColorClassFile(a.classes));
+  const Rig rig = SyncIfNeeded(a, file, std::move(read_rig));
+  bool learn = !file && a.ball == "auto";
+  segment::ColorClassSet classes = file ? file->classes : segment::NamedBall(a.ball);
   // --ball auto learns from recordings with two or more cameras (views that agree across
   // cameras and fly are the ball); one camera's recordings choose among the named colours the
   // one that flies; live sources: the orange ball's classes (docs/DECISIONS.md).
@@ -219,11 +223,9 @@ int Run(TrackArgs a) {
                                          : track::FrameSetOptions::Streaks::kAuto;
   segment::BallColour::Named(a.ball, &options.ball_colour);
   // A file a learning run saved gives the ball's colour as well: the run is the same again.
-  if (!a.classes.empty()) {
-    if (const auto ball = ReadBallColour(a.classes)) {
-      options.ball_colour = *ball;
-      white = ball->IsWhite();
-    }
+  if (file && file->ball) {
+    options.ball_colour = *file->ball;
+    white = file->ball->IsWhite();
   }
   if (choose) {
     // Not white: the background model it needs takes whatever moves for the ball (an arm, a

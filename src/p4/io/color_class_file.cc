@@ -11,8 +11,7 @@
 namespace p4 {
 
 namespace {
-segment::ColorClassSet ParseColorClasses(const std::string& path) {
-  const YAML::Node root = LoadYamlMap(path);
+segment::ColorClassSet ParseColorClasses(const std::string& path, const YAML::Node& root) {
   const YAML::Node list = YamlList(path, root, "classes");
   segment::ColorClassSet set;
   int index = 0;
@@ -46,32 +45,39 @@ segment::ColorClassSet ParseColorClasses(const std::string& path) {
   if (set.MaskOf("ball") == 0) throw Error(path + ": no class named ball* (the ball's classes)");
   return set;
 }
+
+std::optional<segment::BallColour> ParseBallLit(const std::string& path, const YAML::Node& root) {
+  const YAML::Node lit = root["ball_lit"];
+  if (!lit.IsDefined()) return std::nullopt;
+  if (!lit.IsSequence() || lit.size() != 3) {
+    throw Error(path + ": 'ball_lit' must be [y, u, v] (8-bit levels)");
+  }
+  double level[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k) {
+    if (!YamlNumber(lit[k], &level[k]) || !(level[k] >= 0.0 && level[k] <= 255.0)) {
+      throw Error(fmt::format("{}: ball_lit[{}]: '{}' is not a level in 0-255", path, k,
+                              lit[k].IsScalar() ? lit[k].Scalar() : std::string("?")));
+    }
+  }
+  segment::BallColour ball;
+  ball.lit = {static_cast<float>(level[0]), static_cast<float>(level[1]),
+              static_cast<float>(level[2])};
+  return ball;
+}
 }  // namespace
 
-segment::ColorClassSet ReadColorClasses(const std::string& path) {
-  return ReadYamlFile(path, [&] { return ParseColorClasses(path); });
+ColorClassFile ReadColorClassFile(const std::string& path) {
+  return ReadYamlFile(path, [&] {
+    const YAML::Node root = LoadYamlMap(path);
+    ColorClassFile file;
+    file.classes = ParseColorClasses(path, root);
+    file.ball = ParseBallLit(path, root);
+    return file;
+  });
 }
 
-std::optional<segment::BallColour> ReadBallColour(const std::string& path) {
-  return ReadYamlFile(path, [&]() -> std::optional<segment::BallColour> {
-    const YAML::Node root = LoadYamlMap(path);
-    const YAML::Node lit = root["ball_lit"];
-    if (!lit.IsDefined()) return std::nullopt;
-    if (!lit.IsSequence() || lit.size() != 3) {
-      throw Error(path + ": 'ball_lit' must be [y, u, v] (8-bit levels)");
-    }
-    double level[3] = {0.0, 0.0, 0.0};
-    for (int k = 0; k < 3; ++k) {
-      if (!YamlNumber(lit[k], &level[k]) || !(level[k] >= 0.0 && level[k] <= 255.0)) {
-        throw Error(fmt::format("{}: ball_lit[{}]: '{}' is not a level in 0-255", path, k,
-                                lit[k].IsScalar() ? lit[k].Scalar() : std::string("?")));
-      }
-    }
-    segment::BallColour ball;
-    ball.lit = {static_cast<float>(level[0]), static_cast<float>(level[1]),
-                static_cast<float>(level[2])};
-    return ball;
-  });
+segment::ColorClassSet ReadColorClasses(const std::string& path) {
+  return ReadColorClassFile(path).classes;
 }
 
 void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path,

@@ -16,12 +16,17 @@
 
 namespace p4 {
 
+struct ColorClassFile {
+  segment::ColorClassSet classes;
+  std::optional<segment::BallColour> ball;  // its ball_lit; nullopt without it
+};
+
 // Throws p4::Error naming the file, the class and the field: missing file, empty or corrupt
-// file, no class, a bound outside 0-255 or reversed, more than 32 classes, no "ball" class.
+// file, no class, a bound outside 0-255 or reversed, more than 32 classes, no "ball" class; a
+// ball_lit that is not three numbers or has a level outside 0-255 (the value named).
+ColorClassFile ReadColorClassFile(const std::string& path);
+// The classes alone (ReadColorClassFile's).
 segment::ColorClassSet ReadColorClasses(const std::string& path);
-// The file's ball_lit (nullopt without it). Throws p4::Error naming the file and the value: not
-// three numbers, a level outside 0-255.
-std::optional<segment::BallColour> ReadBallColour(const std::string& path);
 // `ball`: written as ball_lit when given.
 void WriteColorClasses(const segment::ColorClassSet& classes, const std::string& path,
                        const segment::BallColour* ball = nullptr);

@@ -43,14 +43,14 @@ TEST_F(ColorClassFileTest, TheBallsColourTravelsWithItsClasses) {
     EXPECT_EQ(read.classes[i].u, classes.classes[i].u);
     EXPECT_EQ(read.classes[i].v, classes.classes[i].v);
   }
-  const auto lit = ReadBallColour(Path("learnt.yaml"));
+  const auto lit = ReadColorClassFile(Path("learnt.yaml")).ball;
   ASSERT_TRUE(lit.has_value());
   EXPECT_FLOAT_EQ(lit->lit.y, 181.5f);
   EXPECT_FLOAT_EQ(lit->lit.u, 62.25f);
   EXPECT_FLOAT_EQ(lit->lit.v, 151.0f);
   // Written without it (a hand-made file): no colour, the classes alone.
   WriteColorClasses(classes, Path("plain.yaml"));
-  EXPECT_FALSE(ReadBallColour(Path("plain.yaml")).has_value());
+  EXPECT_FALSE(ReadColorClassFile(Path("plain.yaml")).ball.has_value());
   EXPECT_EQ(ReadColorClasses(Path("plain.yaml")).classes.size(), classes.classes.size());
 }
 
@@ -60,7 +60,7 @@ TEST_F(ColorClassFileTest, ABadBallColourIsNamed) {
   const auto message = [&](const std::string& lit) {
     const std::string path = Write("bad.yaml", classes + "ball_lit: " + lit + "\n");
     try {
-      ReadBallColour(path);
+      ReadColorClassFile(path);
     } catch (const Error& e) {
       return std::string(e.what());
     }
