@@ -6,25 +6,16 @@
 #include <fstream>
 
 #include "p4/core/error.h"
+#include "p4/io/test_folder.h"
 #include "p4/io/truth_files.h"
 #include "p4/sim/scene.h"
 
 namespace p4 {
 namespace {
 
-class CalibFilesTest : public ::testing::Test {
+class CalibFilesTest : public testing::TestFolder {
  protected:
-  void SetUp() override {
-    dir_ =
-        std::filesystem::temp_directory_path() / ("p4_calib_files_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
+  CalibFilesTest() : TestFolder("p4_calib_files_") {}
   // The message of the p4::Error that f throws, or "" when it does not.
   template <typename F>
   static std::string ErrorOf(F f) {
@@ -35,7 +26,6 @@ class CalibFilesTest : public ::testing::Test {
     }
     return "";
   }
-  std::filesystem::path dir_;
 };
 
 TEST_F(CalibFilesTest, ReadsTheSimulatorsMarkerLayout) {

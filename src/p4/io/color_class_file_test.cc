@@ -7,25 +7,16 @@
 #include <fstream>
 
 #include "p4/core/error.h"
+#include "p4/io/test_folder.h"
 
 namespace p4 {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ColorClassFileTest : public ::testing::Test {
+class ColorClassFileTest : public testing::TestFolder {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("p4_classes_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string Write(const std::string& name, const std::string& text) {
-    std::ofstream(Path(name)) << text;
-    return Path(name);
-  }
-  fs::path dir_;
+  ColorClassFileTest() : TestFolder("p4_classes_test_") {}
 };
 
 // A learning run saves its classes with the ball's lit colour; read back, both are as written

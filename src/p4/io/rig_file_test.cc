@@ -7,25 +7,16 @@
 
 #include "p4/core/error.h"
 #include "p4/geometry/look_at.h"
+#include "p4/io/test_folder.h"
 
 namespace p4 {
 namespace {
 
 namespace fs = std::filesystem;
 
-class RigFileTest : public ::testing::Test {
+class RigFileTest : public testing::TestFolder {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("p4_rig_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& text) {
-    std::string path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
+  RigFileTest() : TestFolder("p4_rig_test_") {}
 
   // Expects ReadRig to fail with a message that contains every fragment.
   void ExpectError(const std::string& path, std::initializer_list<std::string> fragments) {
@@ -56,8 +47,6 @@ class RigFileTest : public ::testing::Test {
     }
     return rig;
   }
-
-  fs::path dir_;
 };
 
 const char* kGoodCamera = R"(
