@@ -188,9 +188,10 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
   if (!mid || !a || !b) return std::nullopt;
   const double diameter = ExpectedDiameterPx(camera, predicted);
   const Eigen::Vector2d path = *b - *a;
-  // Shorter than two diameters over a whole frame: the ball is no faint streak, the regions
-  // find it.
-  if (!(diameter > 0.0) || path.norm() < 2.0 * diameter) return std::nullopt;
+  if (!(diameter > 0.0)) return std::nullopt;
+  // Shorter than two diameters over a whole frame: no faint streak, but a camera that looks for
+  // them (a webcam) may still miss the ball in its colour tables: a ball of 3-4 px keeps little of
+  // its chroma through 4:2:0 and the encoder. The same matched filter then looks for a disc.
   const double depth = (camera.cam_from_world * predicted).z();
   const double sigma_m = std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff()));
   segment::StreakSearchOptions o = options_.streak;
@@ -199,7 +200,9 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
   const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, mid->x(),
                                             mid->y(), path.x(), path.y(), path.norm(), diameter, o);
   if (!hit) return std::nullopt;
-  return StreakDetection(c, *hit, diameter);
+  Detection d = StreakDetection(c, *hit, diameter);
+  d.disc = path.norm() < 2.0 * diameter;
+  return d;
 }
 
 void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
@@ -615,7 +618,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       p.streak = true;
       for (const auto& [c, k] : h.members) {
         p.detections.push_back(offset[c] + k);
-        p.streak = p.streak && candidates[c][k].streak;
+        p.streak = p.streak && candidates[c][k].streak && !candidates[c][k].disc;
       }
       const bool taken = std::any_of(p.detections.begin(), p.detections.end(),
                                      [&](int i) { return taken_detection[i]; });

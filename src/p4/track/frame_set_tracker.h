@@ -235,6 +235,9 @@ struct Detection {
   // diameter is the expected one or estimated from its share, its pixels mostly background (no
   // colour samples, little size evidence).
   bool streak = false;
+  // A streak along a predicted path shorter than two diameters over a frame period (a disc: a
+  // slow ball whose chroma the encoder smeared): no sign by itself that it moved (TrackletPoint).
+  bool disc = false;
   // The region stood within static_px of the same place in the last set (a lamp, a letter, a
   // spare ball; the ball in flight moves, but for a moment at the top of a toss).
   bool still = false;

@@ -95,8 +95,9 @@ struct TrackletPoint {
   TimeNs t = 0;
   Measurement measurement;
   std::vector<int> detections;
-  bool streak = false;  // every view of it is a faint blur streak
-  int64_t stamp = 0;    // set by the initiator: which of its time-stamps
+  bool streak =
+      false;          // every view of it is a faint blur streak (no disc: it moved in the exposure)
+  int64_t stamp = 0;  // set by the initiator: which of its time-stamps
 };
 
 struct Tracklet {
