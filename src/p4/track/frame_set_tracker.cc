@@ -50,8 +50,9 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
   }
-  if (!(backfill_px >= 0.0)) {
-    if (error) *error = "backfill_px must be at least 0 (0: no back-fill)";
+  if (!(backfill_px >= 0.0) || backfill_max_missed < 0) {
+    if (error)
+      *error = "backfill_px and backfill_max_missed must be at least 0 (0 px: no back-fill)";
     return false;
   }
   if (!(single_view_depth_sigma > 0.0) || !(single_view_max_depth_sigma > 0.0) ||
@@ -715,7 +716,9 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     // first after a hit, before the coasting filter's gate grew) are rows all the same.
     if (confirmed && !adopt && n >= 2) ReviseRefused(*confirmed, &result);
   }
-  if (started && n >= 2) BackFill(confirmed->points[confirmed->flight_start].t, &result);
+  if (started && n >= 2) {
+    BackFill(tracker_.history(), confirmed->points[confirmed->flight_start].t, &result);
+  }
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
   NoteTaken(t, result.revisions);
@@ -813,15 +816,26 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->new_track = true;
 }
 
-void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
-  const std::vector<FilterStep>& steps = tracker_.history();
+void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_t0,
+                               FrameSetResult* result) {
   if (!(options_.backfill_px > 0.0) || steps.empty() || past_.empty()) return;
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  // A row measured then, or made one since (a lone view placed, this adoption's flight before
+  // the hit, an earlier back-fill): the flight before. Not a lone view still waiting for its
+  // depth (PlaceLoneViews): the coasting track's guess after a hit, which the flight replaces.
+  const auto ends_search = [&](const PastSet& set) {
+    return result->t - set.t > hold || set.measured || (Taken(set.t) && !Waiting(set.t)) ||
+           std::any_of(result->revisions.begin(), result->revisions.end(),
+                       [&](const Revision& r) { return r.t == set.t; });
+  };
+  const auto before = std::find_if(past_.rbegin(), past_.rend(),
+                                   [&](const PastSet& set) { return set.t < flight_t0; });
+  if (before == past_.rend() || ends_search(*before)) return;  // nothing to fill: not smoothed
   // The track's first step (its flight's first point), smoothed with the steps after it.
   std::size_t first = steps.size() - 1;
   while (first > 0 && !steps[first].start) --first;
   const SmoothedState s0 = SmoothSteps(steps)[first];
   const KalmanOptions& kalman = tracker_options_.kalman;
-  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   // The flight carried back set by set (x, p: a backward filter). Each set of two views or more
   // that it takes corrects it, so a set further back is judged by the sets already taken, not
   // by the first state alone (a toss started from three points knows its depth 1-2 frames back
@@ -832,14 +846,38 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
   measured.noise = KalmanOptions::Noise::kAcceleration;  // the points' own covariances
   KalmanFilter backward(measured);
   TimeNs at = s0.t;
+  int missed = 0;  // sets in a row with no view of the flight
+  // Single views whose depth the flight did not know to single_view_max_depth_sigma, newest
+  // first: placed when a set of two views further back fixes the flight, else given up.
+  std::vector<Revision> pending;
+  const auto push = [&](Revision r) {
+    r.state.t = r.t;
+    r.state.position = r.measurement.position;
+    r.state.measured = true;
+    r.state.cameras = r.measurement.cameras;
+    std::erase_if(waiting_, [&](const WaitingView& w) { return w.t == r.t; });
+    result->revisions.push_back(std::move(r));
+  };
+  // The single views since the flight's last fix (x, p at `at`), whose depth the flight from
+  // after them did not know: carried from this fix, which knows the velocity over the whole
+  // span between.
+  const auto place_pending = [&] {
+    for (Revision& v : pending) {
+      Vector6d y = x;
+      const int k_steps = static_cast<int>(std::ceil(ToSeconds(v.t - at) / 0.004));
+      const double dt = ToSeconds(v.t - at) / std::max(1, k_steps);
+      for (int k = 0; k < k_steps; ++k) y = DragStep(y, dt, kalman.gravity, kalman.drag_per_mass);
+      Matrix6d g = Matrix6d::Identity();
+      g.topRightCorner<3, 3>() = ToSeconds(v.t - at) * Eigen::Matrix3d::Identity();
+      const Eigen::Matrix3d c = (g * p * g.transpose()).topLeftCorner<3, 3>();
+      if (PlaceOnRay(y, c, &v)) push(std::move(v));
+    }
+    pending.clear();
+  };
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
-    // A row measured then, or made one since (a lone view placed, this adoption's flight before
-    // the hit): the flight before.
-    const bool revised =
-        Taken(set->t) || std::any_of(result->revisions.begin(), result->revisions.end(),
-                                     [&](const Revision& r) { return r.t == set->t; });
-    if (result->t - set->t > hold || set->measured || revised) break;
+    const bool ends = ends_search(*set);
+    if (ends && !(set->measured && !pending.empty())) break;
     // Carried back in steps of at most 4 ms (the midpoint rule: well under a millimetre).
     const int n_steps = static_cast<int>(std::ceil(ToSeconds(at - set->t) / 0.004));
     const double h = ToSeconds(set->t - at) / std::max(1, n_steps);
@@ -850,7 +888,39 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
     f.topRightCorner<3, 3>() = ToSeconds(set->t - at) * Eigen::Matrix3d::Identity();
     p = f * p * f.transpose();
     at = set->t;
-    const Eigen::Matrix3d position_covariance = p.topLeftCorner<3, 3>();
+    // A row measured then ends the search; if its views lie on the flight (backfill_px), its
+    // point fixes the flight for the single views after it that wait, and is the row (a track
+    // that took it through its grown gate after a hit wrote its prior's pull too).
+    if (ends) {
+      Revision r;
+      r.t = set->t;
+      std::vector<Observation> o;
+      Hypothesis views;
+      for (int i = 0; i < static_cast<int>(set->detections.size()); ++i) {
+        const Detection& d = set->detections[i];
+        const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
+        if (d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px) {
+          o.push_back({d.camera, d.pixel});
+          views.members.emplace_back(d.camera, i);
+          r.accepted.push_back(i);
+        }
+      }
+      if (o.size() >= 2) {
+        if (const auto e = TriangulateObservations(rig_.cameras, o);
+            e && e->mean_reprojection_px <= options_.reprojection_px) {
+          views.estimate = *e;
+          r.measurement = ToMeasurement(views);
+          backward.Reset(x, p);
+          backward.Update(r.measurement.position, r.measurement.covariance);
+          x = backward.state();
+          p = backward.covariance();
+          place_pending();
+          r.state.velocity = x.tail<3>();
+          push(std::move(r));
+        }
+      }
+      break;
+    }
     // Each camera's view nearest the flight, within backfill_px.
     std::vector<int> nearest(rig_.size(), -1);
     std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
@@ -859,6 +929,14 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
       if (d.still || d.cut) continue;
       const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
       if (!seen) continue;
+      // No fragment (a highlight, the lit part of a shaded ball): its centre is off the ball's.
+      // (A region merged with a hand of the ball's colour about it is taken: the flight tells
+      // which view, earlier sets of two views measure it, as a new track's first ones.)
+      if (!d.streak &&
+          d.diameter_px <
+              options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>())) {
+        continue;
+      }
       const double off = (*seen - d.pixel).norm();
       if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
     }
@@ -872,7 +950,12 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
       observations.push_back({c, set->detections[nearest[c]].pixel});
       views.members.emplace_back(c, nearest[c]);
     }
-    if (observations.empty()) break;
+    if (observations.empty()) {
+      if (++missed > options_.backfill_max_missed) break;
+      continue;
+    }
+    missed = 0;
+    backward.Reset(x, p);
     if (observations.size() >= 2) {
       // Two views or more: the flight only tells which; the point is theirs.
       const auto estimate = TriangulateObservations(rig_.cameras, observations);
@@ -880,41 +963,76 @@ void FrameSetTracker::BackFill(TimeNs flight_t0, FrameSetResult* result) const {
       views.estimate = *estimate;
       r.measurement = ToMeasurement(views);
       // The flight corrected by the point (the filter's update, with the point's covariance).
-      backward.Reset(x, p);
       backward.Update(r.measurement.position, r.measurement.covariance);
       x = backward.state();
       p = backward.covariance();
+      place_pending();
+      push(std::move(r));
     } else {
-      // One: on its ray at the flight's depth, while the flight knows that depth.
+      // One: its ray corrects the flight across it; its depth is the flight's, if it knows it
+      // (else it waits for a fix further back).
       const Detection& d = set->detections[r.accepted.front()];
       const Camera& camera = rig_.cameras[d.camera];
       const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
-      if (std::sqrt(ray.dot(position_covariance * ray)) > options_.single_view_max_depth_sigma) {
-        break;
-      }
-      const double depth = (x.head<3>() - camera.Center()).dot(ray);
-      r.measurement.position = camera.Center() + depth * ray;
-      r.measurement.covariance = position_covariance;
+      const double depth = std::max(0.1, (x.head<3>() - camera.Center()).dot(ray));
+      const double across = depth * options_.pixel_sigma / camera.fx;
+      const double along = options_.single_view_depth_sigma;
+      backward.Update(camera.Center() + depth * ray,
+                      along * along * ray * ray.transpose() +
+                          across * across * (Eigen::Matrix3d::Identity() - ray * ray.transpose()));
+      x = backward.state();
+      p = backward.covariance();
       r.measurement.cameras = 1;
+      r.state.velocity = x.tail<3>();
+      if (PlaceOnRay(x, p.topLeftCorner<3, 3>(), &r)) {
+        push(std::move(r));
+      } else {
+        pending.push_back(std::move(r));
+      }
     }
-    r.state.t = set->t;
-    r.state.position = r.measurement.position;
-    r.state.velocity = x.tail<3>();
-    r.state.measured = true;
-    r.state.cameras = r.measurement.cameras;
-    result->revisions.push_back(std::move(r));
   }
 }
 
-void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {
-  ReviseUntaken(tracklet, tracklet.points.size() - 1, result);
+bool FrameSetTracker::PlaceOnRay(const Vector6d& flight, const Eigen::Matrix3d& covariance,
+                                 Revision* r) const {
+  const PastSet* set = nullptr;
+  for (const PastSet& s : past_) {
+    if (s.t == r->t) set = &s;
+  }
+  if (!set || r->accepted.size() != 1) return false;
+  const Detection& d = set->detections[r->accepted.front()];
+  const Camera& camera = rig_.cameras[d.camera];
+  const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
+  if (std::sqrt(ray.dot(covariance * ray)) > options_.single_view_max_depth_sigma) return false;
+  const double depth = (flight.head<3>() - camera.Center()).dot(ray);
+  r->measurement.position = camera.Center() + depth * ray;
+  r->measurement.covariance = covariance;
+  r->measurement.cameras = 1;
+  r->state.velocity = flight.tail<3>();
+  return true;
 }
 
-void FrameSetTracker::ReviseUntaken(const Tracklet& tracklet, std::size_t end,
-                                    FrameSetResult* result) const {
+bool FrameSetTracker::Waiting(TimeNs t) const {
+  return std::any_of(waiting_.begin(), waiting_.end(),
+                     [&](const WaitingView& w) { return w.t == t; });
+}
+
+void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* result) {
+  const BallTracker replay = ReviseUntaken(tracklet, tracklet.points.size() - 1, result);
+  // The track took the flight's points through its grown gate after it coasted (a hit the
+  // hitter hid from a camera): the sets before the flight's first point are looked at as for a
+  // new track.
+  if (rig_.size() >= 2) {
+    BackFill(replay.history(), tracklet.points[tracklet.flight_start].t, result);
+  }
+}
+
+BallTracker FrameSetTracker::ReviseUntaken(const Tracklet& tracklet, std::size_t end,
+                                           FrameSetResult* result) const {
   BallTracker replay(tracker_options_);
   ReplayPoints(
       tracklet, tracklet.flight_start, end, &replay, [&](TimeNs t) { return !Taken(t); }, result);
+  return replay;
 }
 
 bool FrameSetTracker::Taken(TimeNs t) const {

@@ -199,15 +199,23 @@ struct FrameSetOptions {
   // squared Mahalanobis distance (99 % of 3 degrees of freedom): across a hit the smoothed path
   // bends away from the ball on both sides.
   double lone_view_consistency_chi2 = 11.34;
-  // When a track starts (a confirmed tracklet adopted), the sets of the hold before its flight's
-  // first point that have no measured row are looked at again, newest first: in each, a camera's
-  // view within backfill_px of the flight carried back to that time (the smoothed first state,
-  // gravity and drag, backwards; corrected by each earlier set it takes of two views or more) is
-  // a view of the ball (the first frames after a hit, which one camera saw and the tracklet
-  // could not take); the one nearest it is a row on its ray at the flight's depth, while that
-  // depth is known to single_view_max_depth_sigma. A set with no such view, or a measured row,
-  // ends the search (the hit lies there). 0: off; >= 0. Rigs of 2+ cameras.
+  // When a track starts (a confirmed tracklet adopted), or a confirmed tracklet's flight is one
+  // the track took again through its grown gate after coasting (a hit the hitter hid), the sets
+  // of the hold before the flight's first point that have no measured row are looked at again,
+  // newest first: in each, a camera's view within backfill_px of the flight carried back to that
+  // time (the smoothed first state, gravity and drag, backwards) and no fragment (under
+  // min_size_ratio of the ball's size there) is a view of the ball (the first frames after a
+  // hit, which one camera saw and the tracklet could not take). A set of two views or more is a
+  // row, their point, and corrects the flight; one view's ray corrects it across the ray, and
+  // the view is a row on its ray at the flight's depth once that depth is known to
+  // single_view_max_depth_sigma (from after it, or carried from the next fix further back: it
+  // waits for it). A measured row ends the search (its views, if on the flight, are the last
+  // fix, and its row their point), and so do more than backfill_max_missed sets in a row with no
+  // view (the hit lies there: before it nothing lies on the flight carried back; one or two sets
+  // with none are the ball hidden or missed in every camera for a moment). 0 px: off; >= 0.
+  // Rigs of 2+ cameras.
   double backfill_px = 3.0;
+  int backfill_max_missed = 2;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
   int threads = 1;
@@ -410,11 +418,13 @@ class FrameSetTracker {
   void AdoptTracklet(const Tracklet& tracklet, FrameSetResult* result);
   // A confirmed tracklet whose flight the track follows already (it took this time-stamp's
   // measurement and the tracklet's last points): the points of that flight the filter refused
-  // (not in taken_) become revisions, their states from a filter replaying the flight.
+  // (not in taken_) become revisions, their states from a filter replaying the flight; the sets
+  // before its first point with no row are back-filled from that filter (BackFill).
   void ReviseRefused(const Tracklet& tracklet, FrameSetResult* result);
   // The tracklet's points from its flight_start up to (not including) `end` replayed into a
-  // fresh filter: revisions of those the track did not take (ReviseRefused, Finish).
-  void ReviseUntaken(const Tracklet& tracklet, std::size_t end, FrameSetResult* result) const;
+  // fresh filter, returned: revisions of those the track did not take (ReviseRefused, Finish).
+  BallTracker ReviseUntaken(const Tracklet& tracklet, std::size_t end,
+                            FrameSetResult* result) const;
   // Revision::drop for each coasted_ time-stamp the track did not take (a revision may have
   // given it a measured state), before the result's other revisions; coasted_ cleared.
   void DropCoasted(FrameSetResult* result);
@@ -458,9 +468,17 @@ class FrameSetTracker {
   // (its depth along the ray known, its projection on the view, a two-view fix after it):
   // revisions of their time-stamps; those older than the hold are given up.
   void PlaceLoneViews(FrameSetResult* result);
-  // A track just started, its flight's first point at flight_t0: the views of that flight in
-  // the held sets before it (backfill_px), as revisions of their time-stamps.
-  void BackFill(TimeNs flight_t0, FrameSetResult* result) const;
+  // A flight whose first point is at flight_t0 (a track just started, or one the track took
+  // again after coasting), `steps` a filter's history whose last start is that point: the views
+  // of that flight in the held sets before it (backfill_px), as revisions of their time-stamps.
+  // A view it takes is no longer a waiting lone view (waiting_).
+  void BackFill(std::span<const FilterStep> steps, TimeNs flight_t0, FrameSetResult* result);
+  // A back-filled single view (r->accepted: its one detection in the set of r->t) placed on its
+  // ray at the depth of `flight` (state at r->t) if `covariance` (the flight's position there)
+  // knows it to single_view_max_depth_sigma: its measurement and velocity set.
+  bool PlaceOnRay(const Vector6d& flight, const Eigen::Matrix3d& covariance, Revision* r) const;
+  // A lone view of time-stamp t waits for its depth (waiting_).
+  bool Waiting(TimeNs t) const;
 
   Rig rig_;
   segment::ColorLut lut_;
