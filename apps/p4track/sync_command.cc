@@ -33,14 +33,13 @@ int Run(const SyncArgs& a) {
       throw Error(s + ": sync reads recordings (files), not live sources");
     if (!std::filesystem::exists(s)) throw Error(s + ": no such file");
   }
-  const segment::ColorClassSet classes = !a.classes.empty() ? ReadColorClasses(a.classes)
-                                         : a.ball == "any"  ? segment::AnyColour()
-                                                            : segment::NamedBall(a.ball);
+  const SyncBall ball = SyncBallOf(
+      a.classes.empty() ? std::nullopt : std::optional(ReadColorClassFile(a.classes)), a.ball);
+  const segment::ColorClassSet& classes = ball.classes;
   BallCandidateOptions candidates;
   // Enough play to cover the largest offset and then some.
   candidates.seconds = a.seconds > 0.0 ? a.seconds : std::max(15.0, 2.0 * a.max_offset + 5.0);
-  // The faint streaks' colour: the hint, orange when the ball is unknown.
-  segment::BallColour::Named(a.ball, &candidates.ball);
+  candidates.ball = ball.streak;
   candidates.streak_max_fps = StreakMaxFps(a.streaks, candidates.streak_max_fps);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;

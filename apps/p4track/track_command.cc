@@ -102,13 +102,11 @@ Rig SyncIfNeeded(const TrackArgs& a, const std::optional<ColorClassFile>& file, 
                                    [](const Camera& c) { return !c.clock.has_offset; });
   const bool live = std::any_of(a.sources.begin(), a.sources.end(), VideoReader::IsLive);
   if (a.no_sync || rig.size() < 2 || !unknown || live) return rig;
-  const segment::ColorClassSet classes = file               ? file->classes
-                                         : a.ball == "auto" ? segment::AnyColour()
-                                                            : segment::NamedBall(a.ball);
+  const SyncBall ball = SyncBallOf(file, a.ball);
+  const segment::ColorClassSet& classes = ball.classes;
   BallCandidateOptions candidates;
   candidates.seconds = std::max(15.0, 2.0 * a.max_offset + 5.0);
-  // The faint streaks' colour: the hint, orange when the ball is unknown.
-  segment::BallColour::Named(a.ball, &candidates.ball);
+  candidates.ball = ball.streak;
   candidates.streak_max_fps = StreakMaxFps(a.streaks, candidates.streak_max_fps);
   sync::RigSyncOptions options;
   options.offsets.max_offset_s = a.max_offset;

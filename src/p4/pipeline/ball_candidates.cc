@@ -12,6 +12,7 @@
 #include "p4/io/video_reader.h"
 #include "p4/segment/background_model.h"
 #include "p4/segment/blob_finder.h"
+#include "p4/segment/colour_learning.h"
 #include "p4/segment/foreground_finder.h"
 #include "p4/segment/pixel_access.h"
 #include "p4/segment/streak_finder.h"
@@ -192,6 +193,18 @@ std::string DescribeClock(const Camera& camera, const sync::OffsetResult& r, boo
       r.rate_fitted ? fmt::format("drift {:+.1f} ppm", 1e6 * (r.rate - 1.0))
                     : std::string("drift not fitted (under 20 s of agreeing play)"),
       readout, r.agreements, r.points, r.rms_px);
+}
+
+SyncBall SyncBallOf(const std::optional<ColorClassFile>& file, const std::string& hint) {
+  SyncBall ball;
+  const bool any = hint == "auto" || hint == "any";
+  ball.classes = file ? file->classes : any ? segment::AnyColour() : segment::NamedBall(hint);
+  if (file && file->ball) {
+    ball.streak = *file->ball;
+  } else {
+    segment::BallColour::Named(hint, &ball.streak);  // orange for auto and any
+  }
+  return ball;
 }
 
 }  // namespace p4

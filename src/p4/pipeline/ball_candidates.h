@@ -9,10 +9,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "p4/geometry/rig.h"
+#include "p4/io/color_class_file.h"
 #include "p4/segment/ball_colour.h"
 #include "p4/segment/color_classes.h"
 #include "p4/sync/rig_sync.h"
@@ -35,7 +37,7 @@ struct BallCandidateOptions {
   // views for the offset. They come beside the per_frame regions (up to the finder's 8), not in
   // their places. 0: never.
   double streak_max_fps = 40.0;
-  segment::BallColour ball;  // the streaks' colour: the hint (--ball), orange when unknown
+  segment::BallColour ball;  // the streaks' colour (SyncBallOf)
 
   bool IsValid(std::string* error) const;
 };
@@ -55,5 +57,15 @@ sync::RigSyncResult SyncFromSources(const Rig& rig, const std::vector<std::strin
 
 // One line on a camera's clock as found: "cam1: +0.123412 s +- 0.03 ms (...)" or why not.
 std::string DescribeClock(const Camera& camera, const sync::OffsetResult& result, bool reference);
+
+// The ball the sync looks for (`p4track sync`, and `track` before it syncs): a classes file's
+// classes, and its lit colour (ball_lit, which a run that learnt the colour saves) for the faint
+// streaks; without a file the hint's (`hint` auto or any: any colour, the streaks an orange
+// ball's).
+struct SyncBall {
+  segment::ColorClassSet classes;
+  segment::BallColour streak;
+};
+SyncBall SyncBallOf(const std::optional<ColorClassFile>& file, const std::string& hint);
 
 }  // namespace p4
