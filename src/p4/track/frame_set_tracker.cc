@@ -846,6 +846,11 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   measured.noise = KalmanOptions::Noise::kAcceleration;  // the points' own covariances
   KalmanFilter backward(measured);
   TimeNs at = s0.t;
+  // A view's centre moved back from its faint side by the width it lost against the ball's at
+  // the carried flight's point (as the hypotheses' and lone views').
+  const auto shaded = [&](const Detection& d) {
+    return ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>()));
+  };
   int missed = 0;  // sets in a row with no view of the flight
   // Single views whose depth the flight did not know to single_view_max_depth_sigma, newest
   // first: placed when a set of two views further back fixes the flight, else given up.
@@ -900,7 +905,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
         const Detection& d = set->detections[i];
         const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
         if (d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px) {
-          o.push_back({d.camera, d.pixel});
+          o.push_back({d.camera, shaded(d)});
           views.members.emplace_back(d.camera, i);
           r.accepted.push_back(i);
         }
@@ -947,7 +952,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
     for (int c = 0; c < rig_.size(); ++c) {
       if (nearest[c] < 0) continue;
       r.accepted.push_back(nearest[c]);
-      observations.push_back({c, set->detections[nearest[c]].pixel});
+      observations.push_back({c, shaded(set->detections[nearest[c]])});
       views.members.emplace_back(c, nearest[c]);
     }
     if (observations.empty()) {
@@ -973,7 +978,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       // (else it waits for a fix further back).
       const Detection& d = set->detections[r.accepted.front()];
       const Camera& camera = rig_.cameras[d.camera];
-      const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
+      const Eigen::Vector3d ray = camera.RayDirection(shaded(d));
       const double depth = std::max(0.1, (x.head<3>() - camera.Center()).dot(ray));
       const double across = depth * options_.pixel_sigma / camera.fx;
       const double along = options_.single_view_depth_sigma;
@@ -1002,7 +1007,9 @@ bool FrameSetTracker::PlaceOnRay(const Vector6d& flight, const Eigen::Matrix3d& 
   if (!set || r->accepted.size() != 1) return false;
   const Detection& d = set->detections[r->accepted.front()];
   const Camera& camera = rig_.cameras[d.camera];
-  const Eigen::Vector3d ray = camera.RayDirection(d.pixel);
+  // (The view's centre moved back from its faint side, as the hypotheses' and lone views'.)
+  const Eigen::Vector3d ray =
+      camera.RayDirection(ShadedCentre(d, ExpectedDiameterPx(camera, flight.head<3>())));
   if (std::sqrt(ray.dot(covariance * ray)) > options_.single_view_max_depth_sigma) return false;
   const double depth = (flight.head<3>() - camera.Center()).dot(ray);
   r->measurement.position = camera.Center() + depth * ray;
