@@ -851,6 +851,17 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   const auto shaded = [&](const Detection& d) {
     return ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>()));
   };
+  // A state and its covariance carried over dt seconds, back or forth: gravity and drag in
+  // steps of at most 4 ms (the midpoint rule: well under a millimetre), the covariance as
+  // uniform motion (the position's spread grows with the velocity's).
+  const auto carry = [&](Vector6d* state, Matrix6d* covariance, double dt) {
+    const int n = static_cast<int>(std::ceil(std::abs(dt) / 0.004));
+    const double h = dt / std::max(1, n);
+    for (int k = 0; k < n; ++k) *state = DragStep(*state, h, kalman.gravity, kalman.drag_per_mass);
+    Matrix6d f = Matrix6d::Identity();
+    f.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
+    *covariance = f * *covariance * f.transpose();
+  };
   int missed = 0;  // sets in a row with no view of the flight
   // Single views whose depth the flight did not know to single_view_max_depth_sigma, newest
   // first: placed when a set of two views further back fixes the flight, else given up.
@@ -869,13 +880,9 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   const auto place_pending = [&] {
     for (Revision& v : pending) {
       Vector6d y = x;
-      const int k_steps = static_cast<int>(std::ceil(ToSeconds(v.t - at) / 0.004));
-      const double dt = ToSeconds(v.t - at) / std::max(1, k_steps);
-      for (int k = 0; k < k_steps; ++k) y = DragStep(y, dt, kalman.gravity, kalman.drag_per_mass);
-      Matrix6d g = Matrix6d::Identity();
-      g.topRightCorner<3, 3>() = ToSeconds(v.t - at) * Eigen::Matrix3d::Identity();
-      const Eigen::Matrix3d c = (g * p * g.transpose()).topLeftCorner<3, 3>();
-      if (PlaceOnRay(y, c, &v)) push(std::move(v));
+      Matrix6d c = p;
+      carry(&y, &c, ToSeconds(v.t - at));
+      if (PlaceOnRay(y, c.topLeftCorner<3, 3>(), &v)) push(std::move(v));
     }
     pending.clear();
   };
@@ -883,15 +890,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
     const bool ends = ends_search(*set);
     if (ends && !(set->measured && !pending.empty())) break;
-    // Carried back in steps of at most 4 ms (the midpoint rule: well under a millimetre).
-    const int n_steps = static_cast<int>(std::ceil(ToSeconds(at - set->t) / 0.004));
-    const double h = ToSeconds(set->t - at) / std::max(1, n_steps);
-    for (int k = 0; k < n_steps; ++k) x = DragStep(x, h, kalman.gravity, kalman.drag_per_mass);
-    // The covariance carried back (uniform motion: the position's spread grows with the
-    // velocity's).
-    Matrix6d f = Matrix6d::Identity();
-    f.topRightCorner<3, 3>() = ToSeconds(set->t - at) * Eigen::Matrix3d::Identity();
-    p = f * p * f.transpose();
+    carry(&x, &p, ToSeconds(set->t - at));
     at = set->t;
     // A row measured then ends the search; if its views lie on the flight (backfill_px), its
     // point fixes the flight for the single views after it that wait, and is the row (a track
