@@ -223,7 +223,7 @@ void MonocularSmoother::EndPiece(const Piece& next) {
 
 bool MonocularSmoother::Holds(const std::optional<Stroke>& fit, double max_rms) const {
   return fit && fit->rms_bearing <= max_rms &&
-         fit->median_distance_error <= options_.max_distance_error;
+         fit->median_distance_error <= options_.max_distance_error && !fit->scale_at_bound;
 }
 
 void MonocularSmoother::DecideBend() {

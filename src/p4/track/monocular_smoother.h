@@ -146,7 +146,9 @@ class MonocularSmoother {
   // scale as a bounce between pieces does) when that fit holds; else nullopt.
   std::optional<Stroke> FitFromTable(std::span<const std::vector<BearingObservation>> observations,
                                      Stroke guess, const Stroke& alone, double max_rms) const;
-  // The fit explains the bearings within max_rms and the diameters (max_distance_error).
+  // The fit explains the bearings within max_rms and the diameters (max_distance_error), and no
+  // diameters' scale rests on its bound (Stroke::scale_at_bound: a lead-in or a contact placed
+  // where the ball was not).
   bool Holds(const std::optional<Stroke>& fit, double max_rms) const;
   void Apply(const Stroke& stroke, const FlightPiece* lead_in, double t_from, double t_to);
   // Views between t_first and t_last that no fit explains: on their rays, at the distance the

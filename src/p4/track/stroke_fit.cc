@@ -10,6 +10,10 @@
 namespace p4::track {
 namespace {
 
+// A scale this many sigmas off 1 rests on its bound of 3 (the solver stops a hair inside it:
+// 0.7012 for a bound of 0.7).
+constexpr double kScaleAtBoundSigmas = 2.9;
+
 inline double Value(double x) { return x; }
 template <typename J, int N>
 double Value(const ceres::Jet<J, N>& x) {
@@ -510,6 +514,15 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   if (lead_in || starts_on_plane) out.start = to_junction(start, starts_on_plane);
   out.rms_bearing = std::sqrt(sum / std::max(1, count));
   out.distance_scale = distance_scale;
+  if (options.distance_scale_sigma > 0.0 && anchored) {
+    const double off = kScaleAtBoundSigmas * options.distance_scale_sigma;
+    const auto at_bound = [&](double scale) {
+      return scale <= std::max(0.1, 1.0 - off) || scale >= 1.0 + off;
+    };
+    out.scale_at_bound =
+        at_bound(distance_scale) ||
+        (per_piece && std::any_of(piece_scale.begin(), piece_scale.end(), at_bound));
+  }
   return out;
 }
 

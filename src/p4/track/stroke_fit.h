@@ -73,6 +73,11 @@ struct Stroke {
   // only the bearings hold it). 0: no diameters.
   double median_distance_error = 0.0;
   double distance_scale = 1.0;  // the fitted common scale of the diameters' distances
+  // The common scale or a piece's own came to rest on its bound (3 sigmas,
+  // StrokeFitOptions::distance_scale_sigma): only a scale that far off reconciles the diameters
+  // with the bearings and the anchors, and the distance errors above, measured with that scale,
+  // do not show it. Such a fit is wrong (a lead-in placed off, a bounce misjudged).
+  bool scale_at_bound = false;
 };
 
 // The last piece of the stroke before, already fitted and held fixed: pieces[0] starts where it
