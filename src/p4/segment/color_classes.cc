@@ -67,9 +67,6 @@ ColorClassSet DefaultYellowBall() {
   ColorClassSet set;
   set.classes.push_back({"ball_bright", {150, 245}, {25, 95}, {132, 175}});
   set.classes.push_back({"ball_dark", {80, 160}, {50, 105}, {132, 165}});
-  // Its shaded side under overhead lamps (30-50 %: Y 70-105, U 90-105, V 134-140), where the
-  // chroma has shrunk towards grey with the light.
-  set.classes.push_back({"ball_shade", {50, 110}, {84, 110}, {131, 150}});
   return set;
 }
 
