@@ -11,8 +11,26 @@
 
 namespace {
 
+namespace fs = std::filesystem;
+
+// One scene of a family's tuning set, simulated, tracked and evaluated by the suite in a folder
+// of its own (`tag`); its entry of suite.json (the folder: *out, removed by the caller).
+nlohmann::json OneScene(const std::string& family, int seed, const std::string& tag,
+                        fs::path* out) {
+  *out = fs::temp_directory_path() / ("p4_suite_" + tag + "_" + std::to_string(::getpid()));
+  std::string log;
+  EXPECT_EQ(
+      p4::testing::P4track("eval-suite --out " + out->string() + " --family " + family +
+                               " --set tuning --first " + std::to_string(seed) + " --scenes 1",
+                           &log),
+      0)
+      << log;
+  const auto suite = nlohmann::json::parse(p4::testing::Slurp(*out / "suite.json"));
+  EXPECT_EQ(suite["scenes"].size(), 1u);
+  return suite["scenes"].empty() ? nlohmann::json::object() : suite["scenes"][0];
+}
+
 TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
-  namespace fs = std::filesystem;
   const fs::path out = fs::temp_directory_path() / ("p4_suite_" + std::to_string(::getpid()));
   std::string log;
   ASSERT_EQ(p4::testing::P4track(
@@ -66,17 +84,8 @@ TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
 // median 0.85 mm, 0.23 % false rows whose error makes the RMSE 5.1 mm), and the learnt classes
 // are saved with the run.
 TEST(EvalSuiteCommand, BallAutoLearnsTheColourFromTheScene) {
-  namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / ("p4_suite_auto_" + std::to_string(::getpid()));
-  std::string log;
-  ASSERT_EQ(p4::testing::P4track("eval-suite --out " + out.string() +
-                                     " --family sports --set tuning --first 3 --scenes 1",
-                                 &log),
-            0)
-      << log;
-  const auto suite = nlohmann::json::parse(p4::testing::Slurp(out / "suite.json"));
-  ASSERT_EQ(suite["scenes"].size(), 1u);
-  const auto& scene = suite["scenes"][0];
+  fs::path out;
+  const nlohmann::json scene = OneScene("sports", 3, "auto", &out);
   ASSERT_TRUE(scene.contains("figures")) << scene.dump();
   EXPECT_EQ(scene["axes"]["ball"].get<std::string>(), "yellow");
   const auto& figures = scene["figures"];
@@ -84,6 +93,24 @@ TEST(EvalSuiteCommand, BallAutoLearnsTheColourFromTheScene) {
   EXPECT_LE(figures["false_positive_rate"].get<double>(), 0.01);
   EXPECT_LE(figures["position_median_mm"].get<double>(), 2.0);
   EXPECT_LE(figures["position_rmse_mm"].get<double>(), 10.0);
+  EXPECT_TRUE(fs::exists(out / scene["scene"].get<std::string>() / "run" / "ball_classes.yaml"));
+  fs::remove_all(out);
+}
+
+// One camera cannot learn the ball's colour (nothing tells the ball from what else moves), so it
+// is chosen among named ones; in mono tuning seed 14 (an orange ball over a red-brown floor, its
+// shaded side darker than the floor) the orange classes take 1 % of the ball's pixels and the
+// floor's pieces, and the views measured 20-30 % short put the rows a metre off (1.5 % recall,
+// 981 mm). The named colour's shades learnt from its own flights, outlined on the background,
+// track it (measured 72.5 % recall, 59.9 mm; the one-camera smoother holds the rest) and are
+// saved with the run.
+TEST(EvalSuiteCommand, OneCameraLearnsTheNamedColoursShadesInThisHall) {
+  fs::path out;
+  const nlohmann::json scene = OneScene("mono", 14, "mono", &out);
+  ASSERT_TRUE(scene.contains("figures")) << scene.dump();
+  const auto& figures = scene["figures"];
+  EXPECT_GE(figures["recall"].get<double>(), 0.6);
+  EXPECT_LE(figures["position_rmse_mm"].get<double>(), 100.0);
   EXPECT_TRUE(fs::exists(out / scene["scene"].get<std::string>() / "run" / "ball_classes.yaml"));
   fs::remove_all(out);
 }

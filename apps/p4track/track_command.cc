@@ -225,6 +225,20 @@ int Run(TrackArgs a) {
     options.ball_colour = *file->ball;
     white = file->ball->IsWhite();
   }
+  // A learnt colour: the classes to track with, saved beside the run (reuse with --classes).
+  // The folder first: a run that cannot save what it learns should not spend the time.
+  if (choose || learn) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.out, ec);
+    if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
+  }
+  const auto take_learnt = [&](const LearnColourResult& learnt) {
+    classes = learnt.colour.classes;
+    options.ball_colour = learnt.colour.ball;
+    const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
+    WriteColorClasses(classes, saved, &learnt.colour.ball);
+    return saved;
+  };
   if (choose) {
     // Not white: the background model it needs takes whatever moves for the ball (an arm, a
     // shirt), which flies in one camera's view as often as the ball does.
@@ -250,24 +264,39 @@ int Run(TrackArgs a) {
       classes = segment::NamedBall(chosen.name);
       segment::BallColour::Named(chosen.name, &options.ball_colour);
       white = chosen.name == "white";
+      // Its shades in this hall, from its own flights (the named boxes may take only the lit
+      // part of a ball in a dim hall); saved beside the run as a learning run's are.
+      LearnColourOptions learning;
+      learning.tracking = options;
+      try {
+        const LearnColourResult learnt = LearnNamedColour(rig, a.sources, chosen.name, learning);
+        if (learnt.named_taken >= learning.keep_named_share) {
+          spdlog::info("the {} ball's named colours take {:.1f} % of its pixels in this hall",
+                       chosen.name, 100.0 * learnt.named_taken);
+        } else {
+          const std::string saved = take_learnt(learnt);
+          const segment::Yuv& lit = learnt.colour.ball.lit;
+          spdlog::info(
+              "the {} ball's named colours take only {:.1f} % of its pixels in this hall: learnt "
+              "its shades from {} views in {} tracks (lit YUV {:.0f} {:.0f} {:.0f}, {} classes), "
+              "saved to {} (reuse with --classes)",
+              chosen.name, 100.0 * learnt.named_taken, learnt.views, learnt.tracks, lit.y, lit.u,
+              lit.v, classes.classes.size(), saved);
+        }
+      } catch (const Error& e) {
+        spdlog::warn("{}; tracking with the {} ball's named colours", e.what(), chosen.name);
+      }
     }
   }
   if (learn) {
-    // The folder first: a run that cannot save what it learns should not spend the time.
-    std::error_code ec;
-    std::filesystem::create_directories(a.out, ec);
-    if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
     LearnColourOptions learning;
     learning.tracking = options;
     spdlog::info("learning the ball's colour from the sources' first {:.0f} s",
                  learning.max_seconds);
     try {
       const LearnColourResult learnt = LearnBallColour(rig, a.sources, learning);
-      classes = learnt.colour.classes;
-      options.ball_colour = learnt.colour.ball;
+      const std::string saved = take_learnt(learnt);
       white = learnt.colour.ball.IsWhite();
-      const std::string saved = (std::filesystem::path(a.out) / "ball_classes.yaml").string();
-      WriteColorClasses(classes, saved, &learnt.colour.ball);
       const segment::Yuv& lit = learnt.colour.ball.lit;
       spdlog::info(
           "learnt the ball's colour from {} views in {} tracks ({:.1f} s): lit YUV {:.0f} {:.0f} "

@@ -38,10 +38,90 @@ double ReadFirstSeconds(const Rig& rig, const std::vector<std::string>& sources,
 
 }  // namespace
 
+namespace {
+
+// The first seconds of the sources tracked by `tracker`; the core of every view the filter took
+// at once (a confirmed track of at least min_cameras views) of a ball flying over the table is a
+// sample of its colour, whatever else moves in those pictures a sample of what it is not; the
+// colour learnt from them. Throws p4::Error when too little was seen or, unless the tracker's
+// colour was named (its boxes vouch for a colour: a yellow ball in a dim hall reads Y 84, chroma
+// 27 from grey), what flew is a dark grey.
+LearnColourResult SampleFlights(const Rig& rig, const std::vector<std::string>& sources,
+                                int min_cameras, const segment::ColorClassSet* named,
+                                const LearnColourOptions& options,
+                                track::FrameSetTracker* tracker) {
+  segment::ColourSamples samples;
+  LearnColourResult result;
+  bool new_track = false;
+  result.seconds = ReadFirstSeconds(rig, sources, options.max_seconds, [&](const FrameSet& set) {
+    const track::FrameSetResult r = tracker->Process(set.t, set.images, set.times);
+    // Only views the filter took at once: the track is confirmed, the view is the ball's.
+    if (!r.state || !r.state->measured || r.tentative || !r.measurement ||
+        r.measurement->cameras < min_cameras) {
+      return true;
+    }
+    if (r.new_track) new_track = true;  // a tracklet confirmed
+    // Over the table and above it, where the ball in play flies and the players' shoes, legs
+    // and bodies do not; and flying (a track that has come to rest on two things that happen to
+    // meet across the views is not the ball).
+    const Eigen::Vector3d& p = r.measurement->position;
+    if (std::abs(p.x()) > table::kHalfLength || std::abs(p.y()) > table::kHalfWidth ||
+        p.z() < table::kBallRadius || p.z() > options.max_height ||
+        r.state->velocity.norm() < options.min_speed) {
+      return true;
+    }
+    if (new_track) ++result.tracks, new_track = false;  // its first view sampled
+    for (const track::Detection& d : r.detections) {
+      // A faint streak's pixels are mostly the background's: no sample of the ball's colour.
+      if (!d.accepted || d.streak || !set.images[d.camera]) continue;
+      samples.AddDisc(*set.images[d.camera], d.observed, d.diameter_px, options.learning,
+                      &tracker->background(d.camera));
+      ++result.views;
+      // What else moves in this picture (arms, heads, shirts) is what the colours must not take.
+      samples.AddMoving(*set.images[d.camera], tracker->background(d.camera),
+                        std::span<const Eigen::Vector2d>(&d.observed, 1),
+                        options.moving_clear * d.diameter_px, options.learning);
+    }
+    // Enough seen: stop early.
+    return result.views < options.min_views || result.tracks < options.min_tracks ||
+           samples.size() < 2 * options.learning.min_samples;
+  });
+  std::string why;
+  if (result.views == 0 || !samples.Learn(options.learning, &result.colour, &why)) {
+    throw Error(fmt::format(
+        "--ball auto: the ball was not seen flying in the first {:.1f} s of the sources ({} "
+        "view(s) in {} track(s){}{}); give its colour with --ball orange|white|yellow or "
+        "--classes FILE",
+        result.seconds, result.views, result.tracks, why.empty() ? "" : ": ", why));
+  }
+  if (named) {
+    const std::vector<segment::YuvSample>& ball = samples.samples();
+    const auto taken = std::count_if(ball.begin(), ball.end(), [&](const segment::YuvSample& p) {
+      return std::any_of(named->classes.begin(), named->classes.end(),
+                         [&](const segment::ColorClass& c) { return c.Contains(p.y, p.u, p.v); });
+    });
+    result.named_taken = ball.empty() ? 0.0 : static_cast<double>(taken) / ball.size();
+  }
+  if (!named && result.colour.ball.IsGrey() && !result.colour.ball.IsWhite()) {
+    const segment::Yuv& lit = result.colour.ball.lit;
+    throw Error(fmt::format(
+        "--ball auto: what flew over the table in the first {:.1f} s is a dark grey (lit YUV "
+        "{:.0f} {:.0f} {:.0f}), no ball's colour (a shadow, a shoe); give its colour with --ball "
+        "orange|white|yellow or --classes FILE",
+        result.seconds, lit.y, lit.u, lit.v));
+  }
+  return result;
+}
+
+}  // namespace
+
 bool LearnColourOptions::IsValid(std::string* error) const {
-  if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1 || !(moving_clear >= 0.0)) {
+  if (!(max_seconds > 0.0) || min_views < 1 || min_tracks < 1 || !(moving_clear >= 0.0) ||
+      !(keep_named_share >= 0.0 && keep_named_share <= 1.0)) {
     if (error) {
-      *error = "colour learning: seconds, views and tracks must be positive, moving_clear >= 0";
+      *error =
+          "colour learning: seconds, views and tracks must be positive, moving_clear >= 0, "
+          "keep_named_share in [0, 1]";
     }
     return false;
   }
@@ -86,58 +166,25 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
-  segment::ColourSamples samples;
-  LearnColourResult result;
-  bool new_track = false;
-  result.seconds = ReadFirstSeconds(rig, sources, options.max_seconds, [&](const FrameSet& set) {
-    const track::FrameSetResult r = tracker.Process(set.t, set.images, set.times);
-    // Only views the filter took at once: the track is confirmed, the view is the ball's.
-    if (!r.state || !r.state->measured || r.tentative || !r.measurement ||
-        r.measurement->cameras < 2) {
-      return true;
-    }
-    if (r.new_track) new_track = true;  // a tracklet confirmed
-    // Over the table and above it, where the ball in play flies and the players' shoes, legs
-    // and bodies do not; and flying (a track that has come to rest on two things that happen to
-    // meet across the views is not the ball).
-    const Eigen::Vector3d& p = r.measurement->position;
-    if (std::abs(p.x()) > table::kHalfLength || std::abs(p.y()) > table::kHalfWidth ||
-        p.z() < table::kBallRadius || p.z() > options.max_height ||
-        r.state->velocity.norm() < options.min_speed) {
-      return true;
-    }
-    if (new_track) ++result.tracks, new_track = false;  // its first view sampled
-    for (const track::Detection& d : r.detections) {
-      // A faint streak's pixels are mostly the background's: no sample of the ball's colour.
-      if (!d.accepted || d.streak || !set.images[d.camera]) continue;
-      samples.AddDisc(*set.images[d.camera], d.observed, d.diameter_px, options.learning,
-                      &tracker.background(d.camera));
-      ++result.views;
-      // What else moves in this picture (arms, heads, shirts) is what the colours must not take.
-      samples.AddMoving(*set.images[d.camera], tracker.background(d.camera),
-                        std::span<const Eigen::Vector2d>(&d.observed, 1),
-                        options.moving_clear * d.diameter_px, options.learning);
-    }
-    // Enough seen: stop early.
-    return result.views < options.min_views || result.tracks < options.min_tracks ||
-           samples.size() < 2 * options.learning.min_samples;
-  });
-  if (result.views == 0 || !samples.Learn(options.learning, &result.colour, &why)) {
-    throw Error(fmt::format(
-        "--ball auto: the ball was not seen flying in the first {:.1f} s of the sources ({} "
-        "view(s) in {} track(s){}{}); give its colour with --ball orange|white|yellow or "
-        "--classes FILE",
-        result.seconds, result.views, result.tracks, why.empty() ? "" : ": ", why));
-  }
-  if (result.colour.ball.IsGrey() && !result.colour.ball.IsWhite()) {
-    const segment::Yuv& lit = result.colour.ball.lit;
-    throw Error(fmt::format(
-        "--ball auto: what flew over the table in the first {:.1f} s is a dark grey (lit YUV "
-        "{:.0f} {:.0f} {:.0f}), no ball's colour (a shadow, a shoe); give its colour with --ball "
-        "orange|white|yellow or --classes FILE",
-        result.seconds, lit.y, lit.u, lit.v));
-  }
-  return result;
+  return SampleFlights(rig, sources, 2, nullptr, options, &tracker);
+}
+
+LearnColourResult LearnNamedColour(const Rig& rig, const std::vector<std::string>& sources,
+                                   const std::string& name, const LearnColourOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw Error(why);
+  track::FrameSetOptions tracking = options.tracking;
+  segment::BallColour::Named(name, &tracking.ball_colour);
+  tracking.confirm_tracks = true;
+  tracking.use_background = false;
+  tracking.mask_with_background = false;
+  // The named colour's boxes find the ball (the lit part of a shaded one); the background model
+  // outlines it, shaded side and all: each view is measured by coverage on it.
+  tracking.measure_on_background = true;
+  tracking.background.long_term = false;  // as the learner above (what else moves)
+  const segment::ColorClassSet classes = segment::NamedBall(name);
+  track::FrameSetTracker tracker(rig, classes, tracking);
+  return SampleFlights(rig, sources, 1, &classes, options, &tracker);
 }
 
 NamedColourChoice ChooseNamedColour(const Rig& rig, const std::vector<std::string>& sources,
