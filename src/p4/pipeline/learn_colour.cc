@@ -94,14 +94,7 @@ LearnColourResult SampleFlights(const Rig& rig, const std::vector<std::string>& 
         "--classes FILE",
         result.seconds, result.views, result.tracks, why.empty() ? "" : ": ", why));
   }
-  if (named) {
-    const std::vector<segment::YuvSample>& ball = samples.samples();
-    const auto taken = std::count_if(ball.begin(), ball.end(), [&](const segment::YuvSample& p) {
-      return std::any_of(named->classes.begin(), named->classes.end(),
-                         [&](const segment::ColorClass& c) { return c.Contains(p.y, p.u, p.v); });
-    });
-    result.named_taken = ball.empty() ? 0.0 : static_cast<double>(taken) / ball.size();
-  }
+  if (named) result.named_taken = segment::TakenShare(named->classes, samples.samples());
   if (!named && result.colour.ball.IsGrey() && !result.colour.ball.IsWhite()) {
     const segment::Yuv& lit = result.colour.ball.lit;
     throw Error(fmt::format(

@@ -87,9 +87,7 @@ void ColourSamples::AddMoving(const ImageView& image, const BackgroundModel& bac
   }
 }
 
-namespace {
-
-double TakenShare(const std::vector<ColorClass>& boxes, const std::vector<YuvSample>& samples) {
+double TakenShare(std::span<const ColorClass> boxes, std::span<const YuvSample> samples) {
   if (samples.empty()) return 0.0;
   const auto taken = std::count_if(samples.begin(), samples.end(), [&](const YuvSample& s) {
     return std::any_of(boxes.begin(), boxes.end(),
@@ -97,8 +95,6 @@ double TakenShare(const std::vector<ColorClass>& boxes, const std::vector<YuvSam
   });
   return static_cast<double>(taken) / static_cast<double>(samples.size());
 }
-
-}  // namespace
 
 void ColourSamples::GiveUpMovingColours(const ColourLearningOptions& options,
                                         LearnedColour* out) const {

@@ -51,6 +51,9 @@ struct LearnedColour {
   double ball_lost = 0.0;
 };
 
+// The share of `samples` that any of `boxes` takes (0 without samples).
+double TakenShare(std::span<const ColorClass> boxes, std::span<const YuvSample> samples);
+
 class ColourSamples {
  public:
   // Samples the core of a ball seen at `centre` with `diameter_px` (pixels inside the image):

@@ -10,9 +10,9 @@
 namespace p4::track {
 namespace {
 
-// A scale this many sigmas off 1 rests on its bound of 3 (the solver stops a hair inside it:
+// A scale within this many sigmas of its bound rests on it (the solver stops a hair inside it:
 // 0.7012 for a bound of 0.7).
-constexpr double kScaleAtBoundSigmas = 2.9;
+constexpr double kAtBoundSigmas = 0.1;
 
 inline double Value(double x) { return x; }
 template <typename J, int N>
@@ -338,10 +338,11 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   const bool anchored = lead_in != nullptr || starts_on_plane ||
                         std::any_of(guess.junctions.begin(), guess.junctions.end(),
                                     [](const Junction& j) { return j.on_plane; });
+  const double lower = std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma);
+  const double upper = 1.0 + 3.0 * options.distance_scale_sigma;
   const auto bound = [&](double* scale) {
-    problem.SetParameterLowerBound(scale, 0,
-                                   std::max(0.1, 1.0 - 3.0 * options.distance_scale_sigma));
-    problem.SetParameterUpperBound(scale, 0, 1.0 + 3.0 * options.distance_scale_sigma);
+    problem.SetParameterLowerBound(scale, 0, lower);
+    problem.SetParameterUpperBound(scale, 0, upper);
   };
   if (options.distance_scale_sigma > 0.0 && anchored) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(
@@ -515,9 +516,9 @@ std::optional<Stroke> FitStroke(std::span<const std::vector<BearingObservation>>
   out.rms_bearing = std::sqrt(sum / std::max(1, count));
   out.distance_scale = distance_scale;
   if (options.distance_scale_sigma > 0.0 && anchored) {
-    const double off = kScaleAtBoundSigmas * options.distance_scale_sigma;
+    const double margin = kAtBoundSigmas * options.distance_scale_sigma;
     const auto at_bound = [&](double scale) {
-      return scale <= std::max(0.1, 1.0 - off) || scale >= 1.0 + off;
+      return scale <= lower + margin || scale >= upper - margin;
     };
     out.scale_at_bound =
         at_bound(distance_scale) ||
