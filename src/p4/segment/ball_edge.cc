@@ -47,10 +47,32 @@ double ColourDistance(const double* a, const double* b, double chroma_weight) {
 }
 
 bool ShadeOptions::IsValid(std::string* error) const {
-  if (!(symmetric_px >= 0.0) || !(max_share >= 0.0 && max_share < 1.0)) {
-    if (error) *error = "shade: symmetric_px must be at least 0 and max_share in [0, 1)";
+  if (!(symmetric_px >= 0.0) || !(max_share >= 0.0 && max_share < 1.0) || camera_min_views < 0 ||
+      !(camera_agreement > 0.0 && camera_agreement <= 1.0)) {
+    if (error) {
+      *error =
+          "shade: symmetric_px must be at least 0, max_share in [0, 1), camera_min_views at "
+          "least 0 and camera_agreement in (0, 1]";
+    }
     return false;
   }
+  return true;
+}
+
+void FaintSideVote::Add(const double faint[2]) {
+  const double norm = std::hypot(faint[0], faint[1]);
+  if (!(norm > 0.0)) return;
+  sum_[0] += faint[0] / norm;
+  sum_[1] += faint[1] / norm;
+  ++views_;
+}
+
+bool FaintSideVote::Agreed(const ShadeOptions& options, double out[2]) const {
+  if (options.camera_min_views <= 0 || views_ < options.camera_min_views) return false;
+  const double norm = std::hypot(sum_[0], sum_[1]);
+  if (!(norm >= options.camera_agreement * views_)) return false;
+  out[0] = sum_[0] / norm;
+  out[1] = sum_[1] / norm;
   return true;
 }
 

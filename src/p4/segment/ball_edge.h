@@ -81,11 +81,34 @@ double ColourDistance(const double* a, const double* b, double chroma_weight);
 struct ShadeOptions {
   double symmetric_px = 0.3;
   double max_share = 0.25;
+  // FaintSideVote: a camera's faint side is agreed once this many of its views' edge fits found
+  // one (0: never)...
+  int camera_min_views = 10;
+  // ...and their unit directions' mean has at least this length (1: all the same).
+  double camera_agreement = 0.8;
 
   bool IsValid(std::string* error) const;
 };
 void UnshadeCentre(double width_px, const double faint[2], double expected_px,
                    const ShadeOptions& options, double* cx, double* cy);
+
+// The faint side a camera's views agree on. The hall's light is fixed, so the edge fits of one
+// camera's views that find a faint side mostly find the same one; a view whose own fit found
+// none takes theirs (where its shaded half nears the background too closely for enough of its
+// rays to agree, the fit fails: there the centre leans furthest to the lit side). Pure; one per
+// camera.
+class FaintSideVote {
+ public:
+  // A view's faint side (a unit image direction, EdgeCentre::faint); zero is no vote.
+  void Add(const double faint[2]);
+  // The agreed side (unit) into `out`; false while fewer than options.camera_min_views voted or
+  // their mean is shorter than options.camera_agreement.
+  bool Agreed(const ShadeOptions& options, double out[2]) const;
+
+ private:
+  double sum_[2] = {0.0, 0.0};
+  int views_ = 0;
+};
 
 // `cx, cy`: a first guess of the centre (e.g. the colour region's centroid), within about half a
 // radius; `radius_px`: the ball's radius guess (half the region's major axis for a streak).

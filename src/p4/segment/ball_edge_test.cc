@@ -184,6 +184,43 @@ TEST(EdgeCentreOptions, Validation) {
   EXPECT_TRUE(ShadeOptions{}.IsValid(nullptr));
   EXPECT_FALSE((ShadeOptions{0.3, 1.0}.IsValid(&error)));
   EXPECT_FALSE((ShadeOptions{-0.1, 0.25}.IsValid(nullptr)));
+  EXPECT_FALSE((ShadeOptions{0.3, 0.25, -1, 0.8}.IsValid(nullptr)));
+  EXPECT_FALSE((ShadeOptions{0.3, 0.25, 10, 0.0}.IsValid(nullptr)));
+  EXPECT_FALSE((ShadeOptions{0.3, 0.25, 10, 1.5}.IsValid(nullptr)));
+}
+
+// Lit from above, a camera's views are faint below (image y down) give or take their
+// backgrounds: once 10 agree the side is known; views whose faint sides point every way (no
+// one light) agree on none.
+TEST(FaintSideVote, ACamerasViewsAgreeOnTheHallsFaintSide) {
+  const ShadeOptions options;  // 10 views, mean length 0.8
+  FaintSideVote vote;
+  double side[2] = {0.0, 0.0};
+  const double none[2] = {0.0, 0.0};
+  for (int k = 0; k < 9; ++k) {
+    const double a = M_PI / 2 + 0.3 * std::sin(k);  // about straight down, +-17 degrees
+    const double f[2] = {std::cos(a), std::sin(a)};
+    vote.Add(f);
+    vote.Add(none);  // a view with no faint side is no vote
+  }
+  EXPECT_FALSE(vote.Agreed(options, side));
+  EXPECT_EQ(side[0], 0.0);
+  const double down[2] = {0.0, 2.0};  // not unit: counted as one unit vote
+  vote.Add(down);
+  ASSERT_TRUE(vote.Agreed(options, side));
+  EXPECT_NEAR(std::hypot(side[0], side[1]), 1.0, 1e-12);
+  EXPECT_NEAR(std::atan2(side[1], side[0]), M_PI / 2, 0.1);
+  ShadeOptions off = options;
+  off.camera_min_views = 0;
+  EXPECT_FALSE(vote.Agreed(off, side));
+
+  FaintSideVote scattered;
+  for (int k = 0; k < 40; ++k) {
+    const double a = 2.0 * M_PI * k / 7.0;
+    const double f[2] = {std::cos(a), std::sin(a)};
+    scattered.Add(f);
+  }
+  EXPECT_FALSE(scattered.Agreed(options, side));
 }
 
 }  // namespace

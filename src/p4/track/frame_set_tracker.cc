@@ -88,6 +88,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       coverage_(rig.cameras.size()),
       measured_(rig.cameras.size()),
       static_spots_(rig.cameras.size()),
+      faint_votes_(rig.cameras.size()),
       regions_(rig.cameras.size()),
       streak_searches_(rig.cameras.size()),
       streak_finders_(rig.cameras.size()),
@@ -499,6 +500,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
         if (EdgeGivesDiameter(*e, options_.edge_diameter_max_elongation)) {
           d.diameter_px = e->minor_diameter;
           d.faint = {e->faint[0], e->faint[1]};
+          faint_votes_[c].Add(e->faint);
         }
       }
     }
@@ -1123,10 +1125,13 @@ void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
 
 Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expected_px) const {
   Eigen::Vector2d centre = view.pixel;
-  if (options_.shade_correction) {
-    segment::UnshadeCentre(view.diameter_px, view.faint.data(), expected_px, options_.shade,
-                           &centre.x(), &centre.y());
+  if (!options_.shade_correction) return centre;
+  Eigen::Vector2d faint = view.faint;
+  if (faint.isZero() && !view.streak && !view.by_coverage) {
+    faint_votes_[view.camera].Agreed(options_.shade, faint.data());
   }
+  segment::UnshadeCentre(view.diameter_px, faint.data(), expected_px, options_.shade, &centre.x(),
+                         &centre.y());
   return centre;
 }
 

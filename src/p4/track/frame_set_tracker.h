@@ -385,7 +385,9 @@ class FrameSetTracker {
   bool SizeFits(double diameter_px, double expected_px) const;
   // The view's centre moved back from its faint side (segment::UnshadeCentre, options shade)
   // where expected_px is the ball's width at the point its views place it; its own centre
-  // without a faint side or with shade_correction off.
+  // without a faint side or with shade_correction off. A view whose edge fit found no faint side
+  // takes the side its camera's views agree on (segment::FaintSideVote), unless it is a streak
+  // or measured by coverage (whose centre weighs the shaded part as much as the lit one).
   Eigen::Vector2d ShadedCentre(const Detection& view, double expected_px) const;
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
@@ -505,6 +507,8 @@ class FrameSetTracker {
   // Per camera: its colour regions measured by coverage (when the background measures).
   std::vector<std::vector<std::optional<segment::CoverageRegion>>> measured_;
   std::vector<std::vector<StaticSpot>> static_spots_;
+  // Per camera: the faint sides its views' edge fits found (ShadedCentre).
+  std::vector<segment::FaintSideVote> faint_votes_;
   // Per camera: its last image's views as seen and their times (the rows' delays included).
   struct LastViews {
     std::vector<Eigen::Vector2d> pixels;
