@@ -28,9 +28,15 @@ try {
     null, { timeout: HANG_MS });
   check(true, 'each tile shows its camera\'s picture (640 px wide)');
   check(await page.locator('#view3d canvas').count() === 1, 'a 3D canvas');
-  await page.waitForFunction(() => window.p4live.state && window.p4live.state.ball &&
-    window.p4live.state.cameras.every(c => c.roi && c.detections.some(d => d.accepted)), null, { timeout: HANG_MS });
-  const state = await page.evaluate(() => window.p4live.state);
+  // The state that showed the ball accepted in every camera is the one checked (the page takes
+  // a new state 20 times a second: reading it again could give the next one).
+  await page.waitForFunction(() => {
+    const s = window.p4live.state;
+    if (!(s && s.ball && s.cameras.every(c => c.roi && c.detections.some(d => d.accepted)))) return false;
+    window.p4seen = s;
+    return true;
+  }, null, { timeout: HANG_MS });
+  const state = await page.evaluate(() => window.p4seen);
   check(state.cameras.every(c => c.epipolar.length >= 1), 'each camera gets the epipolar line of the ball seen by the other');
   check(await page.locator('#score .points').count() === 2, 'the scoreboard');
   // The calibration markers on the table: found in each camera's picture where the rig puts them.
