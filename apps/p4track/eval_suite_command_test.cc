@@ -131,4 +131,20 @@ TEST(EvalSuiteCommand, AViewWithoutItsOwnFaintSideTakesItsCamerasFromTheHallsLig
   fs::remove_all(out);
 }
 
+// Sports tuning seed 26 (2 cameras at 960x540, 60 fps, an orange ball over a red-brown floor):
+// during the serve's toss one camera sees only the lit cap of the ball (3 px of a 12 px ball) in
+// every other frame, so those sets have no whole pair and no tracklet point; once the flight is
+// confirmed the smoothed flight on both sides of each such set places the other camera's view on
+// its ray (measured: recall 97.6 -> 98.4 %, no false row).
+TEST(EvalSuiteCommand, TheSetsInsideAConfirmedFlightWithNoWholePairBecomeRows) {
+  fs::path out;
+  const nlohmann::json scene = OneScene("sports", 26, "gaps", &out);
+  ASSERT_TRUE(scene.contains("figures")) << scene.dump();
+  const auto& figures = scene["figures"];
+  EXPECT_GE(figures["recall"].get<double>(), 0.98);
+  EXPECT_LE(figures["false_positive_rate"].get<double>(), 0.0);
+  EXPECT_LE(figures["position_rmse_mm"].get<double>(), 6.5);
+  fs::remove_all(out);
+}
+
 }  // namespace

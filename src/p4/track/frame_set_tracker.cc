@@ -131,6 +131,18 @@ bool EdgeGivesDiameter(const segment::EdgeCentre& e, double max_elongation) {
   return e.minor_diameter > 0.0 && e.major_diameter <= max_elongation * e.minor_diameter;
 }
 
+// A flight's state and covariance carried over dt seconds, back or forth: gravity and drag in
+// steps of at most 4 ms (the midpoint rule: well under a millimetre), the covariance as uniform
+// motion (the position's spread grows with the velocity's).
+void CarryFlight(const KalmanOptions& kalman, double dt, Vector6d* state, Matrix6d* covariance) {
+  const int n = static_cast<int>(std::ceil(std::abs(dt) / 0.004));
+  const double h = dt / std::max(1, n);
+  for (int k = 0; k < n; ++k) *state = DragStep(*state, h, kalman.gravity, kalman.drag_per_mass);
+  Matrix6d f = Matrix6d::Identity();
+  f.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
+  *covariance = f * *covariance * f.transpose();
+}
+
 // Steps `filter` through the tracklet's points [first, last); each measured state whose
 // time-stamp `revise` accepts becomes a revision of it.
 void ReplayPoints(const Tracklet& tracklet, std::size_t first, std::size_t last,
@@ -720,6 +732,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   if (started && n >= 2) {
     BackFill(tracker_.history(), confirmed->points[confirmed->flight_start].t, &result);
+    FillGaps(tracker_.history(), confirmed->points[confirmed->flight_start].t, &result);
   }
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   while (!taken_.empty() && t - taken_.front() > hold) taken_.pop_front();
@@ -853,29 +866,14 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   const auto shaded = [&](const Detection& d) {
     return ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>()));
   };
-  // A state and its covariance carried over dt seconds, back or forth: gravity and drag in
-  // steps of at most 4 ms (the midpoint rule: well under a millimetre), the covariance as
-  // uniform motion (the position's spread grows with the velocity's).
   const auto carry = [&](Vector6d* state, Matrix6d* covariance, double dt) {
-    const int n = static_cast<int>(std::ceil(std::abs(dt) / 0.004));
-    const double h = dt / std::max(1, n);
-    for (int k = 0; k < n; ++k) *state = DragStep(*state, h, kalman.gravity, kalman.drag_per_mass);
-    Matrix6d f = Matrix6d::Identity();
-    f.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
-    *covariance = f * *covariance * f.transpose();
+    CarryFlight(kalman, dt, state, covariance);
   };
   int missed = 0;  // sets in a row with no view of the flight
   // Single views whose depth the flight did not know to single_view_max_depth_sigma, newest
   // first: placed when a set of two views further back fixes the flight, else given up.
   std::vector<Revision> pending;
-  const auto push = [&](Revision r) {
-    r.state.t = r.t;
-    r.state.position = r.measurement.position;
-    r.state.measured = true;
-    r.state.cameras = r.measurement.cameras;
-    std::erase_if(waiting_, [&](const WaitingView& w) { return w.t == r.t; });
-    result->revisions.push_back(std::move(r));
-  };
+  const auto push = [&](Revision r) { PushRevision(std::move(r), result); };
   // The single views since the flight's last fix (x, p at `at`), whose depth the flight from
   // after them did not know: carried from this fix, which knows the velocity over the whole
   // span between.
@@ -927,25 +925,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       }
       break;
     }
-    // Each camera's view nearest the flight, within backfill_px.
-    std::vector<int> nearest(rig_.size(), -1);
-    std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
-    for (int i = 0; i < static_cast<int>(set->detections.size()); ++i) {
-      const Detection& d = set->detections[i];
-      if (d.still || d.cut) continue;
-      const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
-      if (!seen) continue;
-      // No fragment (a highlight, the lit part of a shaded ball): its centre is off the ball's.
-      // (A region merged with a hand of the ball's colour about it is taken: the flight tells
-      // which view, earlier sets of two views measure it, as a new track's first ones.)
-      if (!d.streak &&
-          d.diameter_px <
-              options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>())) {
-        continue;
-      }
-      const double off = (*seen - d.pixel).norm();
-      if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
-    }
+    const std::vector<int> nearest = ViewsOnFlight(*set, x.head<3>());
     Revision r;
     r.t = set->t;
     std::vector<Observation> observations;
@@ -999,6 +979,90 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   }
 }
 
+void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_t0,
+                               FrameSetResult* result) {
+  // (The held sets inside the flight whose best candidate was no whole pair, e.g. one camera's
+  // view a 3 px cap of a shaded ball: the smoothed flight on both sides tells which views are
+  // the ball, as BackFill's carried flight does before it.)
+  if (!(options_.backfill_px > 0.0) || steps.empty() || past_.empty()) return;
+  std::size_t first = steps.size() - 1;
+  while (first > 0 && !steps[first].start) --first;
+  const std::vector<SmoothedState> smoothed = SmoothSteps(steps);
+  for (const PastSet& set : past_) {
+    // Inside the flight: after its first point, before the track's last step.
+    if (set.t <= flight_t0 || set.t >= steps.back().t) continue;
+    if (set.measured || Taken(set.t) ||
+        std::any_of(result->revisions.begin(), result->revisions.end(),
+                    [&](const Revision& r) { return r.t == set.t; })) {
+      continue;
+    }
+    // The smoothed flight at the step nearest the set, carried to it.
+    std::size_t k = first;
+    for (std::size_t i = first; i < steps.size(); ++i) {
+      if (std::abs(ToSeconds(steps[i].t - set.t)) < std::abs(ToSeconds(steps[k].t - set.t))) k = i;
+    }
+    Vector6d x = smoothed[k].state;
+    Matrix6d p = smoothed[k].covariance;
+    CarryFlight(tracker_options_.kalman, ToSeconds(set.t - steps[k].t), &x, &p);
+    const std::vector<int> nearest = ViewsOnFlight(set, x.head<3>());
+    Revision r;
+    r.t = set.t;
+    std::vector<Observation> observations;
+    Hypothesis views;
+    for (int c = 0; c < rig_.size(); ++c) {
+      if (nearest[c] < 0) continue;
+      const Detection& d = set.detections[nearest[c]];
+      r.accepted.push_back(nearest[c]);
+      observations.push_back(
+          {c, ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[c], x.head<3>()))});
+      views.members.emplace_back(c, nearest[c]);
+    }
+    if (observations.empty()) continue;
+    if (observations.size() >= 2) {
+      const auto estimate = TriangulateObservations(rig_.cameras, observations);
+      if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) continue;
+      views.estimate = *estimate;
+      r.measurement = ToMeasurement(views);
+      r.state.velocity = x.tail<3>();
+    } else if (!PlaceOnRay(x, p.topLeftCorner<3, 3>(), &r)) {
+      continue;
+    }
+    PushRevision(std::move(r), result);
+  }
+}
+
+std::vector<int> FrameSetTracker::ViewsOnFlight(const PastSet& set,
+                                                const Eigen::Vector3d& point) const {
+  std::vector<int> nearest(rig_.size(), -1);
+  std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
+  for (int i = 0; i < static_cast<int>(set.detections.size()); ++i) {
+    const Detection& d = set.detections[i];
+    if (d.still || d.cut) continue;
+    const Camera& camera = rig_.cameras[d.camera];
+    const auto seen = camera.Project(point);
+    if (!seen) continue;
+    // No fragment (a highlight, the lit part of a shaded ball): its centre is off the ball's.
+    // (A region merged with a hand of the ball's colour about it is taken: the flight tells
+    // which view, earlier sets of two views measure it, as a new track's first ones.)
+    if (!d.streak && d.diameter_px < options_.min_size_ratio * ExpectedDiameterPx(camera, point)) {
+      continue;
+    }
+    const double off = (*seen - d.pixel).norm();
+    if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
+  }
+  return nearest;
+}
+
+void FrameSetTracker::PushRevision(Revision r, FrameSetResult* result) {
+  r.state.t = r.t;
+  r.state.position = r.measurement.position;
+  r.state.measured = true;
+  r.state.cameras = r.measurement.cameras;
+  // A view it takes is no longer a waiting lone view.
+  std::erase_if(waiting_, [&](const WaitingView& w) { return w.t == r.t; });
+  result->revisions.push_back(std::move(r));
+}
+
 bool FrameSetTracker::PlaceOnRay(const Vector6d& flight, const Eigen::Matrix3d& covariance,
                                  Revision* r) const {
   const PastSet* set = nullptr;
@@ -1032,6 +1096,7 @@ void FrameSetTracker::ReviseRefused(const Tracklet& tracklet, FrameSetResult* re
   // new track.
   if (rig_.size() >= 2) {
     BackFill(replay.history(), tracklet.points[tracklet.flight_start].t, result);
+    FillGaps(replay.history(), tracklet.points[tracklet.flight_start].t, result);
   }
 }
 

@@ -475,6 +475,12 @@ class FrameSetTracker {
   // of that flight in the held sets before it (backfill_px), as revisions of their time-stamps.
   // A view it takes is no longer a waiting lone view (waiting_).
   void BackFill(std::span<const FilterStep> steps, TimeNs flight_t0, FrameSetResult* result);
+  // The held sets after the flight's first point and before the track's last step that have no
+  // row (no whole pair then: a camera's view a fragment, or no view; the tracklet's points were
+  // not among them): each camera's view within backfill_px of the smoothed flight carried to the
+  // set, two or more triangulated, one placed on its ray at the flight's depth (PlaceOnRay), as
+  // revisions of their time-stamps.
+  void FillGaps(std::span<const FilterStep> steps, TimeNs flight_t0, FrameSetResult* result);
   // A back-filled single view (r->accepted: its one detection in the set of r->t) placed on its
   // ray at the depth of `flight` (state at r->t) if `covariance` (the flight's position there)
   // knows it to single_view_max_depth_sigma: its measurement and velocity set.
@@ -543,7 +549,7 @@ class FrameSetTracker {
   // (Revision::drop) when the track ends or is replaced without another measurement.
   std::vector<TimeNs> coasted_;
   // The sets of the hold: their views (as in FrameSetResult::detections) and whether their row
-  // was a measurement, for BackFill.
+  // was a measurement, for BackFill and FillGaps.
   struct PastSet {
     TimeNs t = 0;
     std::vector<Detection> detections;
@@ -551,6 +557,14 @@ class FrameSetTracker {
   };
   std::deque<PastSet> past_;
   std::function<TimeNs()> clock_;
+
+  // Per camera, the index of the set's view nearest the flight's point within backfill_px (-1:
+  // none); not still or cut views, nor fragments (a view below min_size_ratio of the ball's size
+  // there: a highlight, the lit cap of a shaded ball, whose centre is off the ball's).
+  std::vector<int> ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point) const;
+  // r as a measured row of its time-stamp (its state from its measurement); a lone view waiting
+  // at that time-stamp no longer waits.
+  void PushRevision(Revision r, FrameSetResult* result);
 };
 
 }  // namespace p4::track
