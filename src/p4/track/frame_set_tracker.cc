@@ -866,9 +866,6 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   const auto shaded = [&](const Detection& d) {
     return ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[d.camera], x.head<3>()));
   };
-  const auto carry = [&](Vector6d* state, Matrix6d* covariance, double dt) {
-    CarryFlight(kalman, dt, state, covariance);
-  };
   int missed = 0;  // sets in a row with no view of the flight
   // Single views whose depth the flight did not know to single_view_max_depth_sigma, newest
   // first: placed when a set of two views further back fixes the flight, else given up.
@@ -881,7 +878,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
     for (Revision& v : pending) {
       Vector6d y = x;
       Matrix6d c = p;
-      carry(&y, &c, ToSeconds(v.t - at));
+      CarryFlight(kalman, ToSeconds(v.t - at), &y, &c);
       if (PlaceOnRay(y, c.topLeftCorner<3, 3>(), &v)) push(std::move(v));
     }
     pending.clear();
@@ -890,7 +887,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
     const bool ends = ends_search(*set);
     if (ends && !(set->measured && !pending.empty())) break;
-    carry(&x, &p, ToSeconds(set->t - at));
+    CarryFlight(kalman, ToSeconds(set->t - at), &x, &p);
     at = set->t;
     // A row measured then ends the search; if its views lie on the flight (backfill_px), its
     // point fixes the flight for the single views after it that wait, and is the row (a track
@@ -925,17 +922,11 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       }
       break;
     }
-    const std::vector<int> nearest = ViewsOnFlight(*set, x.head<3>());
     Revision r;
     r.t = set->t;
     std::vector<Observation> observations;
     Hypothesis views;
-    for (int c = 0; c < rig_.size(); ++c) {
-      if (nearest[c] < 0) continue;
-      r.accepted.push_back(nearest[c]);
-      observations.push_back({c, shaded(set->detections[nearest[c]])});
-      views.members.emplace_back(c, nearest[c]);
-    }
+    ViewsOnFlight(*set, x.head<3>(), &r, &observations, &views);
     if (observations.empty()) {
       if (++missed > options_.backfill_max_missed) break;
       continue;
@@ -1004,19 +995,11 @@ void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_
     Vector6d x = smoothed[k].state;
     Matrix6d p = smoothed[k].covariance;
     CarryFlight(tracker_options_.kalman, ToSeconds(set.t - steps[k].t), &x, &p);
-    const std::vector<int> nearest = ViewsOnFlight(set, x.head<3>());
     Revision r;
     r.t = set.t;
     std::vector<Observation> observations;
     Hypothesis views;
-    for (int c = 0; c < rig_.size(); ++c) {
-      if (nearest[c] < 0) continue;
-      const Detection& d = set.detections[nearest[c]];
-      r.accepted.push_back(nearest[c]);
-      observations.push_back(
-          {c, ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[c], x.head<3>()))});
-      views.members.emplace_back(c, nearest[c]);
-    }
+    ViewsOnFlight(set, x.head<3>(), &r, &observations, &views);
     if (observations.empty()) continue;
     if (observations.size() >= 2) {
       const auto estimate = TriangulateObservations(rig_.cameras, observations);
@@ -1031,8 +1014,9 @@ void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_
   }
 }
 
-std::vector<int> FrameSetTracker::ViewsOnFlight(const PastSet& set,
-                                                const Eigen::Vector3d& point) const {
+void FrameSetTracker::ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,
+                                    std::vector<Observation>* observations,
+                                    Hypothesis* views) const {
   std::vector<int> nearest(rig_.size(), -1);
   std::vector<double> nearest_px(rig_.size(), options_.backfill_px);
   for (int i = 0; i < static_cast<int>(set.detections.size()); ++i) {
@@ -1050,7 +1034,15 @@ std::vector<int> FrameSetTracker::ViewsOnFlight(const PastSet& set,
     const double off = (*seen - d.pixel).norm();
     if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
   }
-  return nearest;
+  for (int c = 0; c < rig_.size(); ++c) {
+    if (nearest[c] < 0) continue;
+    const Detection& d = set.detections[nearest[c]];
+    r->accepted.push_back(nearest[c]);
+    // (The view's centre moved back from its faint side by the width it lost against the
+    // ball's at the flight's point, as the hypotheses' and lone views'.)
+    observations->push_back({c, ShadedCentre(d, ExpectedDiameterPx(rig_.cameras[c], point))});
+    views->members.emplace_back(c, nearest[c]);
+  }
 }
 
 void FrameSetTracker::PushRevision(Revision r, FrameSetResult* result) {

@@ -558,10 +558,13 @@ class FrameSetTracker {
   std::deque<PastSet> past_;
   std::function<TimeNs()> clock_;
 
-  // Per camera, the index of the set's view nearest the flight's point within backfill_px (-1:
-  // none); not still or cut views, nor fragments (a view below min_size_ratio of the ball's size
-  // there: a highlight, the lit cap of a shaded ball, whose centre is off the ball's).
-  std::vector<int> ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point) const;
+  // Per camera, the set's view nearest the flight's point within backfill_px; not still or cut
+  // views, nor fragments (a view below min_size_ratio of the ball's size there: a highlight, the
+  // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
+  // r->accepted, its centre moved back from shade (ShadedCentre at the point's width) joins
+  // *observations and its (camera, index) views->members.
+  void ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,
+                     std::vector<Observation>* observations, Hypothesis* views) const;
   // r as a measured row of its time-stamp (its state from its measurement); a lone view waiting
   // at that time-stamp no longer waits.
   void PushRevision(Revision r, FrameSetResult* result);
