@@ -158,6 +158,11 @@ LearnColourResult LearnBallColour(const Rig& rig, const std::vector<std::string>
   // Every moving thing is a candidate (arms, legs, shirts): more of them than for a coloured ball.
   tracking.candidates_per_camera =
       std::max(tracking.candidates_per_camera, options.candidates_per_camera);
+  // Its views are judged as a region at a predicted point is (max_size_ratio): the mask outlines
+  // whatever moves, not the ball's colour, and which flight confirms first decides the samples
+  // (with the tracker's bound for views, sports tuning 3 learnt another colour: 2.5 -> 12.6 mm).
+  tracking.max_view_size_ratio = tracking.max_size_ratio;
+  tracking.view_size_margin_sigmas = 0.0;
   track::FrameSetTracker tracker(rig, segment::AnyColour(), tracking);
   return SampleFlights(rig, sources, 2, nullptr, options, &tracker);
 }

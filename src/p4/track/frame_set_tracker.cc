@@ -21,6 +21,11 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "candidates, epipolar and reprojection bounds must be positive";
     return false;
   }
+  if (!(max_size_ratio > 1.0) || !(max_view_size_ratio > 1.0) ||
+      !(view_size_margin_sigmas >= 0.0)) {
+    if (error) *error = "max_size_ratio and max_view_size_ratio must be above 1, the margin >= 0";
+    return false;
+  }
   if (!(motion_max_gap_s > 0.0) || !(motion_max_px_s > 0.0)) {
     if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
     return false;
@@ -1198,6 +1203,12 @@ bool FrameSetTracker::SizeFits(double diameter_px, double expected_px) const {
   return ratio <= options_.max_size_ratio && ratio >= options_.min_fragment_ratio;
 }
 
+bool FrameSetTracker::ViewSizeFits(double diameter_px, double expected_px) const {
+  return SizeFits(diameter_px, expected_px) &&
+         diameter_px <= options_.max_view_size_ratio * expected_px +
+                            options_.view_size_margin_sigmas * options_.diameter_sigma;
+}
+
 std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
     const std::vector<std::vector<Detection>>& candidates) const {
   const int n = rig_.size();
@@ -1232,8 +1243,8 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
               if (d < best_d) best_d = d, best_k = m;
             }
             if (best_k < 0) continue;
-            if (!SizeFits(candidates[k][best_k].diameter_px,
-                          ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
+            if (!ViewSizeFits(candidates[k][best_k].diameter_px,
+                              ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
               misfit = true;
               continue;
             }
@@ -1261,7 +1272,7 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           for (const auto& [c, m] : h.members) {
             const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
             shaded.push_back({c, ShadedCentre(candidates[c][m], expected)});
-            if (!SizeFits(candidates[c][m].diameter_px, expected)) {
+            if (!ViewSizeFits(candidates[c][m].diameter_px, expected)) {
               sized = false;
               break;
             }

@@ -54,10 +54,21 @@ struct FrameSetOptions {
   // it), or, when this is set, the pair is refused (the colour learner, whose candidates are
   // whatever moves: there such a region is most often the body the pair's pieces belong to).
   bool misfit_view_rejects_pair = false;
-  // Each agreeing view's ball diameter within this factor of the one expected at the point
-  // found (down to 1 / factor - 0.25: a ball half hidden looks smaller).
+  // A region's ball diameter within this factor of the one expected where the filter predicts
+  // the ball (down to 1 / factor - 0.25: a ball half hidden looks smaller); the prediction's
+  // depth is known only to centimetres (one camera: decimetres).
   double max_size_ratio = 1.6;
   double min_size_ratio = 1.0 / 1.6 - 0.25;
+  // Each agreeing view of a point found from two views or more: its diameter at most this factor
+  // of the one expected at the point, plus view_size_margin_sigmas of the diameter's noise
+  // (diameter_sigma: a ball of 3-5 px reads a pixel wide either way). There the expected size
+  // is known to the point's millimetres: the ball's own views measure within 15 % of it (99 %
+  // of the views the tracker took in sports tuning 8, 26, 28, 34 and white 4, 6: at most 1.30
+  // where the view's centre was on the ball), while a view of the ball merged with the hitter's
+  // hand or racket reads 1.5 times it (sports tuning 8: a row 50 mm off). Chosen on sports
+  // tuning 1-18, 26, 28, 29, 34 (1.6 before; docs/DECISIONS.md).
+  double max_view_size_ratio = 1.35;
+  double view_size_margin_sigmas = 3.0;
   // Smaller views, down to this share, are a fragment (the lit part of a shaded ball the tables
   // took): such a hypothesis never starts a track and continues one only within
   // fragment_max_distance of the prediction.
@@ -383,6 +394,8 @@ class FrameSetTracker {
   // Whether a view of diameter_px may be the ball where expected_px is its expected diameter
   // (max_size_ratio, min_fragment_ratio).
   bool SizeFits(double diameter_px, double expected_px) const;
+  // ...and a view of a point found from 2+ views (max_view_size_ratio, view_size_margin_sigmas).
+  bool ViewSizeFits(double diameter_px, double expected_px) const;
   // The view's centre moved back from its faint side (segment::UnshadeCentre, options shade)
   // where expected_px is the ball's width at the point its views place it; its own centre
   // without a faint side or with shade_correction off. A view whose edge fit found no faint side

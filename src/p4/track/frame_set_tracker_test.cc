@@ -840,6 +840,44 @@ TEST_F(SharpRigTest, AShadedBallWhoseLitPartAloneIsInTheTablesIsMeasuredWhole) {
   }
 }
 
+TEST_F(SharpRigTest, ABallMergedWithTheHittersHandInOneViewMakesNoPointThere) {
+  // From set 6 on, camera 1's ball merges with an orange hand (a disc 1.65 ball diameters wide
+  // beside it, along the epipolar line of camera 0's view: the pair still agrees). At the point
+  // such a pair makes (28 mm off the ball), the region measures 1.55-1.6 times the ball's
+  // diameter: no view of the ball alone (sports tuning 8: rows 50-77 mm off). Within 1.6 times
+  // the ball's size, as before, the pair is taken.
+  const auto merged_frames = [&](int k) {
+    auto views = Frames(Ball(k), k);
+    if (k >= 6) {
+      const Camera& camera = rig_.cameras[1];
+      const auto px = camera.Project(Ball(k));
+      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+      // Camera 0's ray through the ball, seen by camera 1: the epipolar line's direction.
+      const Eigen::Vector3d ray = (Ball(k) - rig_.cameras[0].Center()).normalized();
+      const auto far = camera.Project(Ball(k) + 0.2 * ray);
+      const Eigen::Vector2d along = (*far - *px).normalized();
+      PaintOrange(1, px->x() + 1.6 * r * along.x(), px->y() + 1.6 * r * along.y(), 1.65 * r);
+    }
+    return views;
+  };
+  const auto worst_two_view = [&](const FrameSetOptions& options) {
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    double worst = 0.0;
+    for (int k = 0; k < 12; ++k) {
+      const auto r = tracker.Process(FromSeconds(k / 120.0), merged_frames(k));
+      if (k >= 6 && r.measurement && r.measurement->cameras >= 2) {
+        worst = std::max(worst, (r.measurement->position - Ball(k)).norm());
+      }
+    }
+    return worst;
+  };
+  FrameSetOptions before;
+  before.max_view_size_ratio = before.max_size_ratio;
+  before.view_size_margin_sigmas = 0.0;
+  EXPECT_GT(worst_two_view(before), 0.02);
+  EXPECT_LT(worst_two_view({}), 0.005);
+}
+
 TEST_F(SharpRigTest, ABallTheTablesMissInOneCameraIsFoundAlongTheOthersEpipolar) {
   // Camera 0 sees the ball as rendered; in camera 1 it flies through dimmer light: its whole disc
   // a dark orange none of the tables' boxes takes (Y 80, V 150), of the same hue.
