@@ -1232,6 +1232,14 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           // Other views: the candidate nearest to the point's projection, if near enough and
           // of a size the ball may have there (misfit_view_rejects_pair).
           bool misfit = false;
+          // A third view smaller than a half-hidden ball there (a fragment: the core of a fast
+          // ball's streak, the lit part of a shaded one) joins no whole pair: it would make the
+          // point a fragment that starts no track, while the pair alone fixes it.
+          const bool pair_whole =
+              da.diameter_px >=
+                  options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[i], estimate->point) &&
+              db.diameter_px >=
+                  options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[j], estimate->point);
           for (int k = 0; k < n; ++k) {
             if (k == i || k == j) continue;
             const auto px = rig_.cameras[k].Project(estimate->point);
@@ -1246,6 +1254,11 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
             if (!ViewSizeFits(candidates[k][best_k].diameter_px,
                               ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
               misfit = true;
+              continue;
+            }
+            if (pair_whole && candidates[k][best_k].diameter_px <
+                                  options_.min_size_ratio *
+                                      ExpectedDiameterPx(rig_.cameras[k], estimate->point)) {
               continue;
             }
             h.members.emplace_back(k, best_k);

@@ -71,7 +71,9 @@ struct FrameSetOptions {
   double view_size_margin_sigmas = 3.0;
   // Smaller views, down to this share, are a fragment (the lit part of a shaded ball the tables
   // took): such a hypothesis never starts a track and continues one only within
-  // fragment_max_distance of the prediction.
+  // fragment_max_distance of the prediction. A fragment in a third camera joins no pair whose
+  // two views are whole (the core of a fast ball's streak after a hit: sports tuning 8 lost the
+  // flight's 3 sets before the recording's end, all of them points of two whole views).
   double min_fragment_ratio = 0.2;
   double fragment_max_distance = 0.1;  // m
   // A fragment's views are measured again by the ball's edge at the expected size
