@@ -136,6 +136,77 @@ double EdgeOnRay(const double* colours, int n, const double* background, double 
   return -1.0;
 }
 
+// Each ray's edge from (cx, cy) along (ux, uy)[r] (negative: none) and its contrast inside the
+// edge (for EdgeCentre::faint), the rays' colours into `colours` (`sampled`: whether the ray
+// stayed in the image). The background is the ring beyond the ball: per channel the median of
+// all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that one
+// differs from the ring (a line or a shadow across some rays' ends is not their background).
+// False when no ray stayed in the image.
+bool RayEdges(const ImageView& image, double cx, double cy, double radius,
+              const EdgeCentreOptions& o, const std::vector<double>& ux,
+              const std::vector<double>& uy, std::vector<double>* colours,
+              std::vector<uint8_t>* sampled, std::vector<double>* edges,
+              std::vector<double>* contrast) {
+  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+  const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
+  const int rays = static_cast<int>(ux.size());
+  colours->resize(3 * static_cast<std::size_t>(n) * rays);
+  sampled->assign(static_cast<std::size_t>(rays), 0);
+  edges->assign(static_cast<std::size_t>(rays), -1.0);
+  contrast->assign(static_cast<std::size_t>(rays), 0.0);
+  for (int r = 0; r < rays; ++r) {
+    const auto j = static_cast<std::size_t>(r);
+    (*sampled)[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &(*colours)[3 * n * j]);
+  }
+  double median[3];
+  std::vector<double> ring, profile;
+  for (int channel = 0; channel < 3; ++channel) {
+    ring.clear();
+    for (int r = 0; r < rays; ++r) {
+      if (!(*sampled)[static_cast<std::size_t>(r)]) continue;
+      for (int k = n - tail; k < n; ++k) {
+        ring.push_back((*colours)[3 * (static_cast<std::size_t>(n) * r + k) + channel]);
+      }
+    }
+    if (ring.empty()) return false;
+    median[channel] = MedianInPlace(ring);
+  }
+  for (int r = 0; r < rays; ++r) {
+    const auto j = static_cast<std::size_t>(r);
+    if (!(*sampled)[j]) continue;
+    const double* c = &(*colours)[3 * static_cast<std::size_t>(n) * r];
+    const double* background = c + 3 * (n - 1);
+    double nearest = ColourDistance(background, median, o.chroma_weight);
+    for (int k = n - tail; k < n - 1; ++k) {
+      const double distance = ColourDistance(c + 3 * k, median, o.chroma_weight);
+      if (distance < nearest) background = c + 3 * k, nearest = distance;
+    }
+    // A ray whose end lies on something else (a line, a shadow) takes the ring's colour.
+    if (nearest > o.min_contrast) background = median;
+    const double found = EdgeOnRay(c, n, background, radius, o, &profile);
+    (*edges)[j] = found;
+    if (found > 0.0) {
+      const int k0 = static_cast<int>(std::ceil(found / 3.0 / o.step_px));
+      const int k1 = std::min(n - 1, static_cast<int>(2.0 * found / 3.0 / o.step_px));
+      double sum = 0.0;
+      for (int k = k0; k <= k1; ++k) sum += profile[static_cast<std::size_t>(k)];
+      (*contrast)[j] = k1 >= k0 ? sum / (k1 - k0 + 1) : 0.0;
+    }
+  }
+  return true;
+}
+
+// Unit directions of `count` rays evenly round the circle (i and i + count / 2 opposite).
+void RayDirections(int count, std::vector<double>* ux, std::vector<double>* uy) {
+  ux->resize(static_cast<std::size_t>(count));
+  uy->resize(ux->size());
+  for (int r = 0; r < count; ++r) {
+    const double a = 2.0 * M_PI * r / count;
+    (*ux)[static_cast<std::size_t>(r)] = std::cos(a),
+    (*uy)[static_cast<std::size_t>(r)] = std::sin(a);
+  }
+}
+
 }  // namespace
 
 bool EdgeCentreOptions::IsValid(std::string* error) const {
@@ -159,63 +230,19 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const double radius = std::max(1.0, radius_px);
   const int half = o.directions / 2;
   const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
-  const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
-  std::vector<double> colours(3 * static_cast<std::size_t>(n) * o.directions), profile, ring;
-  std::vector<uint8_t> sampled(static_cast<std::size_t>(o.directions));
+  std::vector<double> colours, edges, contrast;
+  std::vector<uint8_t> sampled;
   std::vector<double> d(static_cast<std::size_t>(half)), extent(d.size());
-  std::vector<double> contrast(static_cast<std::size_t>(o.directions));  // inside each edge
   std::vector<uint8_t> use(d.size());
   // The rays' directions: i and i + half are opposite.
-  std::vector<double> ux(static_cast<std::size_t>(o.directions)), uy(ux.size());
-  for (int r = 0; r < o.directions; ++r) {
-    const double a = 2.0 * M_PI * r / o.directions;
-    ux[static_cast<std::size_t>(r)] = std::cos(a), uy[static_cast<std::size_t>(r)] = std::sin(a);
-  }
+  std::vector<double> ux, uy;
+  RayDirections(o.directions, &ux, &uy);
   EdgeCentre out;
   for (int iteration = 0; iteration < o.iterations; ++iteration) {
-    // Every ray's colours; the background is the ring beyond the ball: per channel the median of
-    // all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that
-    // one differs from the ring (a line or a shadow across some rays' ends is not their
-    // background).
-    ring.clear();
-    double median[3];
-    for (int r = 0; r < o.directions; ++r) {
-      const auto j = static_cast<std::size_t>(r);
-      sampled[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &colours[3 * n * j]);
+    if (!RayEdges(image, cx, cy, radius, o, ux, uy, &colours, &sampled, &edges, &contrast)) {
+      return std::nullopt;
     }
-    for (int channel = 0; channel < 3; ++channel) {
-      ring.clear();
-      for (int r = 0; r < o.directions; ++r) {
-        if (!sampled[static_cast<std::size_t>(r)]) continue;
-        for (int k = n - tail; k < n; ++k) {
-          ring.push_back(colours[3 * (static_cast<std::size_t>(n) * r + k) + channel]);
-        }
-      }
-      if (ring.empty()) return std::nullopt;
-      median[channel] = MedianInPlace(ring);
-    }
-    const auto edge = [&](int r) {
-      if (!sampled[static_cast<std::size_t>(r)]) return -1.0;
-      const double* c = &colours[3 * static_cast<std::size_t>(n) * r];
-      const double* background = c + 3 * (n - 1);
-      double nearest = ColourDistance(background, median, o.chroma_weight);
-      for (int k = n - tail; k < n - 1; ++k) {
-        const double distance = ColourDistance(c + 3 * k, median, o.chroma_weight);
-        if (distance < nearest) background = c + 3 * k, nearest = distance;
-      }
-      // A ray whose end lies on something else (a line, a shadow) takes the ring's colour.
-      if (nearest > o.min_contrast) background = median;
-      const double found = EdgeOnRay(c, n, background, radius, o, &profile);
-      // The ray's contrast inside the edge (for EdgeCentre::faint).
-      if (found > 0.0) {
-        const int k0 = static_cast<int>(std::ceil(found / 3.0 / o.step_px));
-        const int k1 = std::min(n - 1, static_cast<int>(2.0 * found / 3.0 / o.step_px));
-        double sum = 0.0;
-        for (int k = k0; k <= k1; ++k) sum += profile[static_cast<std::size_t>(k)];
-        contrast[static_cast<std::size_t>(r)] = k1 >= k0 ? sum / (k1 - k0 + 1) : 0.0;
-      }
-      return found;
-    };
+    const auto edge = [&](int r) { return edges[static_cast<std::size_t>(r)]; };
     for (int i = 0; i < half; ++i) {
       const double r1 = edge(i), r2 = edge(i + half);
       const auto j = static_cast<std::size_t>(i);
@@ -311,6 +338,116 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
     const double b = std::hypot(f(1), f(2));
     if (b > 0.0) out.faint[0] = -f(1) / b, out.faint[1] = -f(2) / b;
   }
+  out.cx = cx, out.cy = cy;
+  return out;
+}
+
+bool EdgeCircleOptions::IsValid(std::string* error) const {
+  if (!edge.IsValid(error)) return false;
+  if (!(min_ray_share > 0.0 && min_ray_share <= 1.0) || !(max_ray_residual_px > 0.0) ||
+      !(max_gap_deg > 0.0 && max_gap_deg <= 180.0)) {
+    if (error) {
+      *error =
+          "edge circle: min_ray_share in (0, 1], max_ray_residual_px > 0, max_gap_deg in (0, 180]";
+    }
+    return false;
+  }
+  return true;
+}
+
+std::optional<EdgeCentre> MeasureEdgeCircle(const ImageView& image, double cx, double cy,
+                                            double radius_px, const EdgeCircleOptions& options) {
+  const EdgeCentreOptions& o = options.edge;
+  const double radius = std::max(1.0, radius_px);
+  const int rays = o.directions;
+  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+  std::vector<double> colours, edges, contrast, ux, uy, found;
+  std::vector<uint8_t> sampled, use(static_cast<std::size_t>(rays));
+  RayDirections(rays, &ux, &uy);
+  EdgeCentre out;
+  double fitted_radius = radius;
+  for (int iteration = 0; iteration < o.iterations; ++iteration) {
+    if (!RayEdges(image, cx, cy, radius, o, ux, uy, &colours, &sampled, &edges, &contrast)) {
+      return std::nullopt;
+    }
+    // Rays whose edge lies within half a radius guess of the median edge (a ray that ran along
+    // the merged region finds its far end, or none).
+    found.clear();
+    for (double e : edges) {
+      if (e > 0.0) found.push_back(e);
+    }
+    if (found.size() < 3) return std::nullopt;
+    const double median = MedianInPlace(found);
+    for (int r = 0; r < rays; ++r) {
+      const double e = edges[static_cast<std::size_t>(r)];
+      use[static_cast<std::size_t>(r)] = e > 0.0 && std::abs(e - median) <= 0.5 * radius;
+    }
+    // r_i = ox ux_i + oy uy_i + R by least squares; pass 0 drops rays far from the fit.
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    int agree = 0;
+    double residual = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+      for (int r = 0; r < rays; ++r) {
+        const auto j = static_cast<std::size_t>(r);
+        if (!use[j]) continue;
+        const Eigen::Vector3d row(ux[j], uy[j], 1.0);
+        normal += row * row.transpose();
+        rhs += row * edges[j];
+      }
+      if (!(normal.determinant() > 1e-6)) return std::nullopt;
+      f = normal.ldlt().solve(rhs);
+      agree = 0;
+      residual = 0.0;
+      for (int r = 0; r < rays; ++r) {
+        const auto j = static_cast<std::size_t>(r);
+        if (!use[j]) continue;
+        const double e = edges[j] - (f(0) * ux[j] + f(1) * uy[j] + f(2));
+        if (pass == 0 && std::abs(e) > options.max_ray_residual_px) {
+          use[j] = 0;
+          continue;
+        }
+        ++agree, residual += e * e;
+      }
+    }
+    if (agree < 4 || !(f(2) > 0.0)) return std::nullopt;
+    cx += f(0), cy += f(1);
+    fitted_radius = f(2);
+    out.pairs = agree;
+    out.residual_px = std::sqrt(residual / agree);
+    // Rays cast again from the new centre (the model is first order in the offset) until it
+    // settles; the last fit is judged.
+    if (std::hypot(f(0), f(1)) >= o.settled_px && iteration + 1 < o.iterations) continue;
+    if (agree < options.min_ray_share * rays || out.residual_px > o.max_residual_px) {
+      return std::nullopt;
+    }
+    // The widest gap between agreeing rays' directions (in steps of the rays).
+    int gap = 0, last = -1, first = -1;
+    for (int r = 0; r < rays; ++r) {
+      if (!use[static_cast<std::size_t>(r)]) continue;
+      if (last >= 0) gap = std::max(gap, r - last);
+      if (first < 0) first = r;
+      last = r;
+    }
+    gap = std::max(gap, first + rays - last);
+    if (gap * 360.0 / rays > options.max_gap_deg + 1e-9) return std::nullopt;
+    break;
+  }
+  out.minor_diameter = out.major_diameter = 2.0 * fitted_radius;
+  // The colour inside: every sampled ray's first samples (as MeasureEdgeCentre).
+  const int inside = std::max(
+      1, std::min(n, 1 + static_cast<int>(0.25 * std::max(2.0 * fitted_radius, 2.0) / o.step_px)));
+  int count = 0;
+  for (int r = 0; r < rays; ++r) {
+    if (!sampled[static_cast<std::size_t>(r)]) continue;
+    for (int k = 0; k < inside; ++k, ++count) {
+      for (int channel = 0; channel < 3; ++channel) {
+        out.colour[channel] += colours[3 * (static_cast<std::size_t>(n) * r + k) + channel];
+      }
+    }
+  }
+  for (double& channel : out.colour) channel /= std::max(1, count);
   out.cx = cx, out.cy = cy;
   return out;
 }

@@ -118,4 +118,33 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
                                             double radius_px,
                                             const EdgeCentreOptions& options = {});
 
+// A disc merged on one side with a region of its colour (the ball against a hand or a shirt of
+// its colour): the rays that end there find no edge, so opposite pairs seldom agree and
+// MeasureEdgeCentre fails. Its centre and radius from single rays instead: each ray's edge
+// r_i = R + o . u_i (o the centre's offset from the rays' origin, R the radius; first order in
+// o) by least squares over the rays that find one within half a radius guess of it, dropping
+// those further than max_ray_residual_px from the fit, the rays cast again from the new centre
+// (edge.iterations, edge.settled_px). Holds when min_ray_share of the rays agree to
+// edge.max_residual_px RMS and the agreeing rays' directions leave no gap wider than
+// max_gap_deg: an arc of less than half the outline does not fix its centre. A disc only:
+// minor = major = 2R; no faint side. Preconditions as MeasureEdgeCentre's.
+struct EdgeCircleOptions {
+  // The rays (directions, step, reach, contrast, iterations, settled_px, max_residual_px; the
+  // pairs' fields are not used).
+  EdgeCentreOptions edge = [] {
+    EdgeCentreOptions e;
+    e.directions = 16;
+    e.iterations = 3;
+    return e;
+  }();
+  double min_ray_share = 0.4;
+  double max_ray_residual_px = 0.6;
+  double max_gap_deg = 180.0;
+
+  bool IsValid(std::string* error) const;
+};
+std::optional<EdgeCentre> MeasureEdgeCircle(const ImageView& image, double cx, double cy,
+                                            double radius_px,
+                                            const EdgeCircleOptions& options = {});
+
 }  // namespace p4::segment

@@ -171,6 +171,53 @@ TEST(EdgeCentre, NothingToMeasure) {
   EXPECT_FALSE(MeasureEdgeCentre(border.View(), 2.0, 24.0, 5.0).has_value());
 }
 
+// A ball of 12 px merged on its left with a region of its colour (a sleeve): the rays that end
+// there find no edge or the sleeve's; the circle from single rays finds the centre and the width
+// from the outline's other 290 degrees.
+double Sleeve(double x, double y, double cx, double cy, double r) {
+  const bool in = x >= cx - r - 9.0 && x <= cx - 0.5 * r && std::abs(y - cy) <= 0.6 * r;
+  return std::max(Disc(x, y, cx, cy, r), in ? 1.0 : 0.0);
+}
+
+TEST(EdgeCircle, ABallMergedWithARegionOfItsColourOnOneSide) {
+  const double cx = 34.3, cy = 24.7, r = 6.0;
+  const I420Image image =
+      Paint(72, 48, [&](double x, double y) { return Sleeve(x, y, cx, cy, r); });
+  // The pair fit leans to the sleeve (0.6 px here: the pairs through its ends agree with it).
+  const auto pair = MeasureEdgeCentre(image.View(), cx + 1.0, cy - 0.8, r);
+  EXPECT_TRUE(!pair || std::hypot(pair->cx - cx, pair->cy - cy) > 0.4);
+  const auto e = MeasureEdgeCircle(image.View(), cx + 1.0, cy - 0.8, r);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_NEAR(e->cx, cx, 0.1);
+  EXPECT_NEAR(e->cy, cy, 0.1);
+  EXPECT_NEAR(e->minor_diameter, 2.0 * r, 0.3);
+  EXPECT_EQ(e->minor_diameter, e->major_diameter);
+  // A whole disc: the same centre as the pair fit.
+  const I420Image disc = Paint(72, 48, [&](double x, double y) { return Disc(x, y, cx, cy, r); });
+  const auto whole = MeasureEdgeCircle(disc.View(), cx - 1.0, cy + 0.8, r);
+  ASSERT_TRUE(whole.has_value());
+  EXPECT_NEAR(whole->cx, cx, 0.1);
+  EXPECT_NEAR(whole->cy, cy, 0.1);
+  EXPECT_EQ(whole->pairs, EdgeCircleOptions{}.edge.directions);
+}
+
+TEST(EdgeCircle, NoCircleOnABarOrWhereLessThanHalfTheOutlineShows) {
+  // A bar of the ball's colour, 4 px wide: rays along it find no edge.
+  const I420Image bar = Paint(72, 48, [](double x, double y) {
+    return std::abs(y - 24.0) <= 2.0 && x > 5.0 && x < 67.0 ? 1.0 : 0.0;
+  });
+  EXPECT_FALSE(MeasureEdgeCircle(bar.View(), 36.0, 24.0, 5.0).has_value());
+  // A ball whose whole left half is merged with a wide region: the gap is over 180 degrees.
+  const double cx = 34.0, cy = 24.0, r = 6.0;
+  const I420Image half = Paint(72, 48, [&](double x, double y) {
+    return std::max(Disc(x, y, cx, cy, r),
+                    x <= cx - 0.2 * r && std::abs(y - cy) <= 1.1 * r ? 1.0 : 0.0);
+  });
+  EXPECT_FALSE(MeasureEdgeCircle(half.View(), cx, cy, r).has_value());
+  const I420Image flat = Paint(72, 48, [](double, double) { return 0.0; });
+  EXPECT_FALSE(MeasureEdgeCircle(flat.View(), 36.0, 24.0, 5.0).has_value());
+}
+
 TEST(EdgeCentreOptions, Validation) {
   EXPECT_TRUE(EdgeCentreOptions{}.IsValid(nullptr));
   EdgeCentreOptions odd;
@@ -187,6 +234,13 @@ TEST(EdgeCentreOptions, Validation) {
   EXPECT_FALSE((ShadeOptions{0.3, 0.25, -1, 0.8}.IsValid(nullptr)));
   EXPECT_FALSE((ShadeOptions{0.3, 0.25, 10, 0.0}.IsValid(nullptr)));
   EXPECT_FALSE((ShadeOptions{0.3, 0.25, 10, 1.5}.IsValid(nullptr)));
+  EXPECT_TRUE(EdgeCircleOptions{}.IsValid(nullptr));
+  EdgeCircleOptions circle;
+  circle.max_gap_deg = 200.0;
+  EXPECT_FALSE(circle.IsValid(&error));
+  circle = {};
+  circle.min_ray_share = 0.0;
+  EXPECT_FALSE(circle.IsValid(nullptr));
 }
 
 // Lit from above, a camera's views are faint below (image y down) give or take their

@@ -28,7 +28,12 @@ bool EpipolarSearchOptions::IsValid(std::string* error) const {
     if (error) *error = "epipolar search: the hall must have a size";
     return false;
   }
-  return edge.IsValid(error);
+  if (!(circle_min_diameter_px >= 0.0) || !(circle_min_chroma >= 0.0)) {
+    if (error)
+      *error = "epipolar search: circle_min_diameter_px and circle_min_chroma must be >= 0";
+    return false;
+  }
+  return edge.IsValid(error) && circle.IsValid(error);
 }
 
 namespace {
@@ -117,7 +122,11 @@ std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Ve
       continue;
     }
     ++fits;
-    const auto e = segment::MeasureEdgeCentre(image_b, q->x(), q->y(), 0.5 * expected, o.edge);
+    auto e = segment::MeasureEdgeCentre(image_b, q->x(), q->y(), 0.5 * expected, o.edge);
+    if (!e && o.circle_min_diameter_px > 0.0 && expected >= o.circle_min_diameter_px &&
+        Chroma(colour_a) >= o.circle_min_chroma) {
+      e = segment::MeasureEdgeCircle(image_b, q->x(), q->y(), 0.5 * expected, o.circle);
+    }
     if (!e || !(e->minor_diameter > 0.0) ||
         !(e->major_diameter <= o.max_elongation * e->minor_diameter)) {
       continue;

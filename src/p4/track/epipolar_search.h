@@ -6,9 +6,11 @@
 // another sees the ball whole. That view fixes a ray, and its diameter the depth along it to
 // some ten per cent: in the other camera the ball lies on a short segment of the epipolar line.
 // Along it the ball's edge is fitted (segment/ball_edge.h) at the size the depth gives, every
-// radius or so; a fit that holds there is the ball when it is round, of the expected size at the
-// point the two views triangulate to, of the first view's hue (shading scales a colour's luma
-// and chroma alike: the angle of (U, V) about grey stays), and the only one on the segment.
+// radius or so (where the ball merges on one side with something of its colour, its outline as a
+// circle from single rays); a fit that holds there is the ball when it is round, of the expected
+// size at the point the two views triangulate to, of the first view's hue (shading scales a
+// colour's luma and chroma alike: the angle of (U, V) about grey stays), and the only one on the
+// segment.
 //
 // Frames: pixels of each camera (distorted), points in the world frame, metres. Pure.
 #pragma once
@@ -56,6 +58,18 @@ struct EpipolarSearchOptions {
     e.min_pair_share = 0.6;
     return e;
   }();
+  // Where that fit fails and the ball there is expected this wide or more (px), its outline is
+  // fitted as a circle from single rays (segment::MeasureEdgeCircle): the ball merged on one
+  // side with a hand or a shirt of its colour, or half hidden, whose rays there find no edge
+  // (sports tuning 34: a toss rising against the server's ball-coloured sleeve, its outline
+  // plain on 200 degrees). Smaller balls are left to the pair fit: a few pixels' arc fixes no
+  // centre (with no floor, webcam tuning 3 took false circles: 9.0 -> 120 mm). 0: off. Only for
+  // a first view of this chroma or more: the circle is judged by its hue alone, which says
+  // little near grey (a white ball under warm light, 11 from grey, found round pieces of white
+  // shirts and lines: white tuning 3 4.28 -> 6.87 mm, 0.79 % false rows).
+  double circle_min_diameter_px = 8.0;
+  double circle_min_chroma = 24.0;
+  segment::EdgeCircleOptions circle;
 
   bool IsValid(std::string* error) const;
 };

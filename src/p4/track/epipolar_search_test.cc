@@ -65,6 +65,36 @@ TEST_F(EpipolarSearchTest, FindsItWhereTheFirstViewsDiameterIsTenPerCentOff) {
   EXPECT_LT((found->pixel - pixel_b_).norm(), 0.3);
 }
 
+TEST_F(EpipolarSearchTest, FindsABallMergedOnOneSideWithARegionOfItsColour) {
+  // Camera b sees the ball against a sleeve of its hue that covers its outline's left quarter and
+  // runs far beyond it: no fit of opposite ray pairs holds there; the circle from single rays
+  // finds it (and nothing without it).
+  ball_ = {-1.5, -0.4, 0.8};  // nearer camera b: the ball 14 px wide there
+  pixel_a_ = *a_.Project(ball_);
+  diameter_a_ = SphereDiameterPx(a_, ball_, table::kBallRadius);
+  pixel_b_ = *b_.Project(ball_);
+  radius_b_ = 0.5 * SphereDiameterPx(b_, ball_, table::kBallRadius);
+  ASSERT_GE(2.0 * radius_b_, EpipolarSearchOptions{}.circle_min_diameter_px);
+  const double r = radius_b_;
+  const I420Image image = Paint(
+      b_.width, b_.height,
+      [&](double x, double y) {
+        const bool sleeve = x >= pixel_b_.x() - r - 40.0 && x <= pixel_b_.x() - 0.5 * r &&
+                            std::abs(y - pixel_b_.y()) <= 0.75 * r;
+        return std::max(Disc(x, y, pixel_b_.x(), pixel_b_.y(), r), sleeve ? 1.0 : 0.0);
+      },
+      kDimYellow, kDarkRed);
+  const auto found = Search(image);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_LT((found->pixel - pixel_b_).norm(), 0.3);
+  EXPECT_LT((found->point - ball_).norm(), 0.01);
+  EpipolarSearchOptions pairs_only;
+  pairs_only.circle_min_diameter_px = 0.0;
+  const double colour[3] = {kLitYellow.y, kLitYellow.u, kLitYellow.v};
+  EXPECT_FALSE(
+      SearchAlongEpipolar(a_, pixel_a_, diameter_a_, colour, b_, image.View(), pairs_only));
+}
+
 TEST_F(EpipolarSearchTest, AnotherHueIsNotTheBall) {
   EXPECT_FALSE(Search(ImageB(pixel_b_, 1.0, {90.0, 160.0, 110.0})).has_value());  // blue
 }
@@ -138,6 +168,12 @@ TEST(EpipolarSearchOptions, RejectsNonsense) {
   EXPECT_FALSE(o.IsValid(&error));
   o = {};
   o.max_z = o.floor_z;
+  EXPECT_FALSE(o.IsValid(&error));
+  o = {};
+  o.circle_min_diameter_px = -1.0;
+  EXPECT_FALSE(o.IsValid(&error));
+  o = {};
+  o.circle.max_gap_deg = 0.0;
   EXPECT_FALSE(o.IsValid(&error));
 }
 
