@@ -137,7 +137,7 @@ struct EdgeCircleOptions {
     e.iterations = 3;
     return e;
   }();
-  double min_ray_share = 0.4;
+  double min_ray_share = 0.5;
   double max_ray_residual_px = 0.6;
   double max_gap_deg = 180.0;
 
