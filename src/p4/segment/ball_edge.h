@@ -127,7 +127,8 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
 // (edge.iterations, edge.settled_px). Holds when min_ray_share of the rays agree to
 // edge.max_residual_px RMS and the agreeing rays' directions leave no gap wider than
 // max_gap_deg: an arc of less than half the outline does not fix its centre. A disc only:
-// minor = major = 2R; no faint side. Preconditions as MeasureEdgeCentre's.
+// minor = major = 2R; `pairs` counts the rays that agreed; no faint side. Preconditions as
+// MeasureEdgeCentre's.
 struct EdgeCircleOptions {
   // The rays (directions, step, reach, contrast, iterations, settled_px, max_residual_px; the
   // pairs' fields are not used).
