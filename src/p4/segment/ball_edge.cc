@@ -136,24 +136,29 @@ double EdgeOnRay(const double* colours, int n, const double* background, double 
   return -1.0;
 }
 
+// Samples per ray for a ball of radius guess `radius` (px): to reach x the radius plus the margin.
+int RaySamples(double radius, const EdgeCentreOptions& o) {
+  return static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+}
+
 // Each ray's edge from (cx, cy) along (ux, uy)[r] (negative: none) and its contrast inside the
-// edge (for EdgeCentre::faint), the rays' colours into `colours` (`sampled`: whether the ray
-// stayed in the image). The background is the ring beyond the ball: per channel the median of
-// all rays' last 2 px, and on each ray its own tail sample nearest to that unless even that one
-// differs from the ring (a line or a shadow across some rays' ends is not their background).
-// False when no ray stayed in the image.
+// edge (for EdgeCentre::faint; `contrast` may be null), the rays' colours into `colours`
+// (`sampled`: whether the ray stayed in the image). The background is the ring beyond the ball: per
+// channel the median of all rays' last 2 px, and on each ray its own tail sample nearest to that
+// unless even that one differs from the ring (a line or a shadow across some rays' ends is not
+// their background). False when no ray stayed in the image.
 bool RayEdges(const ImageView& image, double cx, double cy, double radius,
               const EdgeCentreOptions& o, const std::vector<double>& ux,
               const std::vector<double>& uy, std::vector<double>* colours,
               std::vector<uint8_t>* sampled, std::vector<double>* edges,
               std::vector<double>* contrast) {
-  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+  const int n = RaySamples(radius, o);
   const int tail = std::min(n, std::max(3, static_cast<int>(2.0 / o.step_px)));  // the last 2 px
   const int rays = static_cast<int>(ux.size());
   colours->resize(3 * static_cast<std::size_t>(n) * rays);
   sampled->assign(static_cast<std::size_t>(rays), 0);
   edges->assign(static_cast<std::size_t>(rays), -1.0);
-  contrast->assign(static_cast<std::size_t>(rays), 0.0);
+  if (contrast) contrast->assign(static_cast<std::size_t>(rays), 0.0);
   for (int r = 0; r < rays; ++r) {
     const auto j = static_cast<std::size_t>(r);
     (*sampled)[j] = SampleRay(image, cx, cy, ux[j], uy[j], n, o, &(*colours)[3 * n * j]);
@@ -185,7 +190,7 @@ bool RayEdges(const ImageView& image, double cx, double cy, double radius,
     if (nearest > o.min_contrast) background = median;
     const double found = EdgeOnRay(c, n, background, radius, o, &profile);
     (*edges)[j] = found;
-    if (found > 0.0) {
+    if (contrast && found > 0.0) {
       const int k0 = static_cast<int>(std::ceil(found / 3.0 / o.step_px));
       const int k1 = std::min(n - 1, static_cast<int>(2.0 * found / 3.0 / o.step_px));
       double sum = 0.0;
@@ -205,6 +210,25 @@ void RayDirections(int count, std::vector<double>* ux, std::vector<double>* uy) 
     (*ux)[static_cast<std::size_t>(r)] = std::cos(a),
     (*uy)[static_cast<std::size_t>(r)] = std::sin(a);
   }
+}
+
+// The colour inside a fit of width `width_px`: every sampled ray's first samples (the rays start
+// within settled_px of the centre, or at the last centre before it moved less than that).
+void InsideColour(const std::vector<double>& colours, const std::vector<uint8_t>& sampled, int n,
+                  double width_px, const EdgeCentreOptions& o, double out[3]) {
+  const int inside =
+      std::max(1, std::min(n, 1 + static_cast<int>(0.25 * std::max(width_px, 2.0) / o.step_px)));
+  int count = 0;
+  out[0] = out[1] = out[2] = 0.0;
+  for (std::size_t r = 0; r < sampled.size(); ++r) {
+    if (!sampled[r]) continue;
+    for (int k = 0; k < inside; ++k, ++count) {
+      for (int channel = 0; channel < 3; ++channel) {
+        out[channel] += colours[3 * (static_cast<std::size_t>(n) * r + k) + channel];
+      }
+    }
+  }
+  for (int channel = 0; channel < 3; ++channel) out[channel] /= std::max(1, count);
 }
 
 }  // namespace
@@ -229,7 +253,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
                                             double radius_px, const EdgeCentreOptions& o) {
   const double radius = std::max(1.0, radius_px);
   const int half = o.directions / 2;
-  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
+  const int n = RaySamples(radius, o);
   std::vector<double> colours, edges, contrast;
   std::vector<uint8_t> sampled;
   std::vector<double> d(static_cast<std::size_t>(half)), extent(d.size());
@@ -305,20 +329,7 @@ std::optional<EdgeCentre> MeasureEdgeCentre(const ImageView& image, double cx, d
   const double q = std::hypot(f(1), f(2));
   out.minor_diameter = f(0) + q > 0.0 ? 2.0 / std::sqrt(f(0) + q) : 0.0;
   out.major_diameter = f(0) - q > 0.0 ? 2.0 / std::sqrt(f(0) - q) : 0.0;
-  // The colour inside: every sampled ray's first samples (the rays start within settled_px of
-  // the centre, or at the last centre before it moved less than that).
-  const int inside = std::max(
-      1, std::min(n, 1 + static_cast<int>(0.25 * std::max(out.minor_diameter, 2.0) / o.step_px)));
-  int count = 0;
-  for (int r = 0; r < o.directions; ++r) {
-    if (!sampled[static_cast<std::size_t>(r)]) continue;
-    for (int k = 0; k < inside; ++k, ++count) {
-      for (int channel = 0; channel < 3; ++channel) {
-        out.colour[channel] += colours[3 * (static_cast<std::size_t>(n) * r + k) + channel];
-      }
-    }
-  }
-  for (double& channel : out.colour) channel /= std::max(1, count);
+  InsideColour(colours, sampled, n, out.minor_diameter, o, out.colour);
   // The faint side: the agreeing pairs' contrasts as a + b cos + c sin, by least squares.
   Eigen::Matrix3d contrast_normal = Eigen::Matrix3d::Zero();
   Eigen::Vector3d contrast_rhs = Eigen::Vector3d::Zero();
@@ -360,14 +371,14 @@ std::optional<EdgeCentre> MeasureEdgeCircle(const ImageView& image, double cx, d
   const EdgeCentreOptions& o = options.edge;
   const double radius = std::max(1.0, radius_px);
   const int rays = o.directions;
-  const int n = static_cast<int>(std::ceil((o.reach * radius + o.reach_margin_px) / o.step_px)) + 1;
-  std::vector<double> colours, edges, contrast, ux, uy, found;
+  const int n = RaySamples(radius, o);
+  std::vector<double> colours, edges, ux, uy, found;
   std::vector<uint8_t> sampled, use(static_cast<std::size_t>(rays));
   RayDirections(rays, &ux, &uy);
   EdgeCentre out;
   double fitted_radius = radius;
   for (int iteration = 0; iteration < o.iterations; ++iteration) {
-    if (!RayEdges(image, cx, cy, radius, o, ux, uy, &colours, &sampled, &edges, &contrast)) {
+    if (!RayEdges(image, cx, cy, radius, o, ux, uy, &colours, &sampled, &edges, nullptr)) {
       return std::nullopt;
     }
     // Rays whose edge lies within half a radius guess of the median edge (a ray that ran along
@@ -435,19 +446,7 @@ std::optional<EdgeCentre> MeasureEdgeCircle(const ImageView& image, double cx, d
     break;
   }
   out.minor_diameter = out.major_diameter = 2.0 * fitted_radius;
-  // The colour inside: every sampled ray's first samples (as MeasureEdgeCentre).
-  const int inside = std::max(
-      1, std::min(n, 1 + static_cast<int>(0.25 * std::max(2.0 * fitted_radius, 2.0) / o.step_px)));
-  int count = 0;
-  for (int r = 0; r < rays; ++r) {
-    if (!sampled[static_cast<std::size_t>(r)]) continue;
-    for (int k = 0; k < inside; ++k, ++count) {
-      for (int channel = 0; channel < 3; ++channel) {
-        out.colour[channel] += colours[3 * (static_cast<std::size_t>(n) * r + k) + channel];
-      }
-    }
-  }
-  for (double& channel : out.colour) channel /= std::max(1, count);
+  InsideColour(colours, sampled, n, out.minor_diameter, o, out.colour);
   out.cx = cx, out.cy = cy;
   return out;
 }

@@ -93,6 +93,8 @@ std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Ve
     return std::abs(p.x()) <= o.half_length && std::abs(p.y()) <= o.half_width &&
            p.z() >= o.floor_z && p.z() <= o.max_z;
   };
+  // The circle from single rays where the pair fit fails (circle_min_diameter_px, _chroma).
+  const bool circles = o.circle_min_diameter_px > 0.0 && Chroma(colour_a) >= o.circle_min_chroma;
   std::optional<EpipolarFind> best;
   std::vector<Eigen::Vector2d> tried;  // fits' centres already judged
   int fits = 0, distinct = 0;
@@ -123,8 +125,7 @@ std::optional<EpipolarFind> SearchAlongEpipolar(const Camera& a, const Eigen::Ve
     }
     ++fits;
     auto e = segment::MeasureEdgeCentre(image_b, q->x(), q->y(), 0.5 * expected, o.edge);
-    if (!e && o.circle_min_diameter_px > 0.0 && expected >= o.circle_min_diameter_px &&
-        Chroma(colour_a) >= o.circle_min_chroma) {
+    if (!e && circles && expected >= o.circle_min_diameter_px) {
       e = segment::MeasureEdgeCircle(image_b, q->x(), q->y(), 0.5 * expected, o.circle);
     }
     if (!e || !(e->minor_diameter > 0.0) ||

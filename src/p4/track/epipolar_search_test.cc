@@ -24,6 +24,12 @@ class EpipolarSearchTest : public ::testing::Test {
       : a_(p4::testing::MakeCamera("side", {0.2, -3.5, 1.5})),
         b_(p4::testing::MakeCamera("end", {-4.0, -0.8, 2.0}, {0.3, 0.0, 0.0},
                                    {-0.12, 0.05, 0.001, -0.0005, 0.0})) {
+    PlaceBall({0.5, 0.2, 0.25});
+  }
+
+  // The ball at `ball` (world, m): its views in both cameras.
+  void PlaceBall(const Eigen::Vector3d& ball) {
+    ball_ = ball;
     pixel_a_ = *a_.Project(ball_);
     diameter_a_ = SphereDiameterPx(a_, ball_, table::kBallRadius);
     pixel_b_ = *b_.Project(ball_);
@@ -44,7 +50,7 @@ class EpipolarSearchTest : public ::testing::Test {
   }
 
   Camera a_, b_;
-  Eigen::Vector3d ball_{0.5, 0.2, 0.25};
+  Eigen::Vector3d ball_;
   Eigen::Vector2d pixel_a_, pixel_b_;
   double diameter_a_ = 0.0, radius_b_ = 0.0;
 };
@@ -69,11 +75,7 @@ TEST_F(EpipolarSearchTest, FindsABallMergedOnOneSideWithARegionOfItsColour) {
   // Camera b sees the ball against a sleeve of its hue that covers its outline's left quarter and
   // runs far beyond it: no fit of opposite ray pairs holds there; the circle from single rays
   // finds it (and nothing without it).
-  ball_ = {-1.5, -0.4, 0.8};  // nearer camera b: the ball 14 px wide there
-  pixel_a_ = *a_.Project(ball_);
-  diameter_a_ = SphereDiameterPx(a_, ball_, table::kBallRadius);
-  pixel_b_ = *b_.Project(ball_);
-  radius_b_ = 0.5 * SphereDiameterPx(b_, ball_, table::kBallRadius);
+  PlaceBall({-1.5, -0.4, 0.8});  // nearer camera b: the ball 14 px wide there
   ASSERT_GE(2.0 * radius_b_, EpipolarSearchOptions{}.circle_min_diameter_px);
   const double r = radius_b_;
   const I420Image image = Paint(

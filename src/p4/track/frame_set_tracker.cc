@@ -1033,9 +1033,7 @@ void FrameSetTracker::ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& p
     // No fragment (a highlight, the lit part of a shaded ball): its centre is off the ball's.
     // (A region merged with a hand of the ball's colour about it is taken: the flight tells
     // which view, earlier sets of two views measure it, as a new track's first ones.)
-    if (!d.streak && d.diameter_px < options_.min_size_ratio * ExpectedDiameterPx(camera, point)) {
-      continue;
-    }
+    if (!d.streak && Fragment(d.diameter_px, ExpectedDiameterPx(camera, point))) continue;
     const double off = (*seen - d.pixel).norm();
     if (off <= nearest_px[d.camera]) nearest[d.camera] = i, nearest_px[d.camera] = off;
   }
@@ -1209,6 +1207,10 @@ bool FrameSetTracker::ViewSizeFits(double diameter_px, double expected_px) const
                             options_.view_size_margin_sigmas * options_.diameter_sigma;
 }
 
+bool FrameSetTracker::Fragment(double diameter_px, double expected_px) const {
+  return diameter_px < options_.min_size_ratio * expected_px;
+}
+
 std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
     const std::vector<std::vector<Detection>>& candidates) const {
   const int n = rig_.size();
@@ -1236,10 +1238,8 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           // ball's streak, the lit part of a shaded one) joins no whole pair: it would make the
           // point a fragment that starts no track, while the pair alone fixes it.
           const bool pair_whole =
-              da.diameter_px >=
-                  options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[i], estimate->point) &&
-              db.diameter_px >=
-                  options_.min_size_ratio * ExpectedDiameterPx(rig_.cameras[j], estimate->point);
+              !Fragment(da.diameter_px, ExpectedDiameterPx(rig_.cameras[i], estimate->point)) &&
+              !Fragment(db.diameter_px, ExpectedDiameterPx(rig_.cameras[j], estimate->point));
           for (int k = 0; k < n; ++k) {
             if (k == i || k == j) continue;
             const auto px = rig_.cameras[k].Project(estimate->point);
@@ -1251,16 +1251,12 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
               if (d < best_d) best_d = d, best_k = m;
             }
             if (best_k < 0) continue;
-            if (!ViewSizeFits(candidates[k][best_k].diameter_px,
-                              ExpectedDiameterPx(rig_.cameras[k], estimate->point))) {
+            const double expected_k = ExpectedDiameterPx(rig_.cameras[k], estimate->point);
+            if (!ViewSizeFits(candidates[k][best_k].diameter_px, expected_k)) {
               misfit = true;
               continue;
             }
-            if (pair_whole && candidates[k][best_k].diameter_px <
-                                  options_.min_size_ratio *
-                                      ExpectedDiameterPx(rig_.cameras[k], estimate->point)) {
-              continue;
-            }
+            if (pair_whole && Fragment(candidates[k][best_k].diameter_px, expected_k)) continue;
             h.members.emplace_back(k, best_k);
             observations.push_back({k, candidates[k][best_k].pixel});
           }
@@ -1289,10 +1285,9 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
               sized = false;
               break;
             }
-            const double ratio = candidates[c][m].diameter_px / expected;
             // Smaller than a half-hidden ball: the part of a shaded ball that the tables took.
-            if (ratio < options_.min_size_ratio) h.fragment = true;
-            h.size_misfit += std::abs(std::log(ratio));
+            if (Fragment(candidates[c][m].diameter_px, expected)) h.fragment = true;
+            h.size_misfit += std::abs(std::log(candidates[c][m].diameter_px / expected));
           }
           if (!sized) continue;
           if (options_.shade_correction) {
@@ -1325,7 +1320,7 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
       Detection& d = (*candidates)[c][k];
       const double expected = ExpectedDiameterPx(rig_.cameras[c], h.estimate.point);
       if (c >= static_cast<int>(images.size()) || !images[c] || d.streak || d.by_coverage ||
-          d.cut || expected <= 0.0 || d.diameter_px >= options_.min_size_ratio * expected ||
+          d.cut || expected <= 0.0 || !Fragment(d.diameter_px, expected) ||
           std::find(tried.begin(), tried.end(), std::make_pair(c, k)) != tried.end()) {
         continue;
       }

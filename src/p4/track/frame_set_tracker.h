@@ -398,6 +398,8 @@ class FrameSetTracker {
   bool SizeFits(double diameter_px, double expected_px) const;
   // ...and a view of a point found from 2+ views (max_view_size_ratio, view_size_margin_sigmas).
   bool ViewSizeFits(double diameter_px, double expected_px) const;
+  // Whether such a view is a fragment of the ball there (under min_size_ratio of expected_px).
+  bool Fragment(double diameter_px, double expected_px) const;
   // The view's centre moved back from its faint side (segment::UnshadeCentre, options shade)
   // where expected_px is the ball's width at the point its views place it; its own centre
   // without a faint side or with shade_correction off. A view whose edge fit found no faint side
