@@ -25,6 +25,16 @@ struct TriangulationOptions {
   double min_conditioning = 1e-4;
   // Reject a point that lies behind (or closer than this to) the origin of any ray, metres.
   double min_depth = 0.05;
+  // Weights of the views (beyond the paper's plain least squares, which counts every ray's
+  // distance alike: the noise of the camera farthest from the ball, whose pixels span the most
+  // millimetres there, pulls the point as much as the nearest camera's). With pixel_sigma > 0,
+  // TriangulateObservations weighs each ray's distance by 1 / sigma^2, sigma^2 = (pixel_sigma *
+  // range / f)^2 + ray_sigma_m^2: a view's centre is known to pixel_sigma in its image, plus
+  // ray_sigma_m in the world whatever the range (an error that grows with the object's size in the
+  // image). 0: equal weights, as the paper.
+  double pixel_sigma = 0.0;  // px
+  double ray_sigma_m = 0.0;  // metres
+  int reweightings = 2;      // weighted solves after the first (the ranges from the last)
 
   bool IsValid(std::string* error) const;
 };
@@ -35,10 +45,13 @@ struct TriangulationResult {
   double conditioning = 0.0;      // lambda_min / lambda_max of the normal matrix, in [0, 1]
 };
 
-// Least-squares point closest to at least two rays. nullopt for fewer than two rays, for
-// (anti)parallel rays (conditioning below the option) or a point behind a ray's origin.
+// Least-squares point closest to at least two rays, each ray's squared distance times its
+// weight (`weights` empty: all 1; else one positive weight per ray). nullopt for fewer than two
+// rays, for (anti)parallel rays (conditioning, of the unweighted rays, below the option) or a
+// point behind a ray's origin.
 std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
-                                                   const TriangulationOptions& options = {});
+                                                   const TriangulationOptions& options = {},
+                                                   std::span<const double> weights = {});
 
 // One camera's view of the ball.
 struct Observation {
@@ -53,8 +66,9 @@ struct PointEstimate {
   int num_views = 0;
 };
 
-// Triangulates observations of the same point in several cameras, and reports the mean
-// reprojection error. Preconditions: observation camera indices are valid for `cameras`.
+// Triangulates observations of the same point in several cameras (weighted by the options'
+// sigmas, see there), and reports the mean reprojection error. Preconditions: observation camera
+// indices are valid for `cameras`.
 std::optional<PointEstimate> TriangulateObservations(std::span<const Camera> cameras,
                                                      std::span<const Observation> observations,
                                                      const TriangulationOptions& options = {});

@@ -101,5 +101,74 @@ TEST(Triangulation, SkewRaysGiveTheMidpointAndTheirDistance) {
   EXPECT_FALSE(bad.IsValid(&error));
 }
 
+// A camera 2 m from the ball and one 8 m away, both with the same pixel noise: one pixel is
+// 2 mm at the near camera and 8 mm at the far one. The paper's plain least squares counts the
+// rays' distances alike, so the far camera's noise pulls the point as much as the near one's;
+// weighted by the views' sigmas the point follows each ray by its pixels (maximum likelihood
+// for equal pixel noise): a lower reprojection cost in every trial and a smaller 3D error.
+TEST(Triangulation, ViewsWeightedByTheirPixelsFollowTheCameraNearTheBall) {
+  const Eigen::Vector3d target(0.3, 0.1, 0.4);
+  const std::vector<Camera> cameras = {
+      testing::MakeCamera("near", target + Eigen::Vector3d(0.0, -2.0, 0.3), target),
+      testing::MakeCamera("far", target + Eigen::Vector3d(-5.6, 5.6, 1.0), target)};
+  TriangulationOptions weighted;
+  weighted.pixel_sigma = 0.5;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  // The direction across both rays, where each camera alone knows the point.
+  const Eigen::Vector3d across = (cameras[0].RayDirection({641.5, 359.0}))
+                                     .cross(cameras[1].RayDirection({641.5, 359.0}))
+                                     .normalized();
+  double plain_sq = 0.0, weighted_sq = 0.0, plain_across = 0.0, weighted_across = 0.0;
+  const int trials = 400;
+  for (int k = 0; k < trials; ++k) {
+    const Eigen::Vector3d point =
+        target + Eigen::Vector3d(0.001 * (k % 20), 0.0, 0.002 * static_cast<double>(k / 20));
+    auto observations = Observe(cameras, point, 2);
+    ASSERT_EQ(observations.size(), 2u);
+    for (auto& obs : observations) obs.pixel += Eigen::Vector2d(noise(rng), noise(rng));
+    const auto plain = TriangulateObservations(cameras, observations);
+    const auto ml = TriangulateObservations(cameras, observations, weighted);
+    ASSERT_TRUE(plain && ml);
+    const auto cost = [&](const Eigen::Vector3d& x) {
+      double sum = 0.0;
+      for (const auto& obs : observations)
+        sum += (*cameras[obs.camera].Project(x) - obs.pixel).squaredNorm();
+      return sum;
+    };
+    EXPECT_LE(cost(ml->point), cost(plain->point) + 1e-6) << k;
+    plain_sq += (plain->point - point).squaredNorm();
+    weighted_sq += (ml->point - point).squaredNorm();
+    plain_across += std::pow((plain->point - point).dot(across), 2);
+    weighted_across += std::pow((ml->point - point).dot(across), 2);
+  }
+  // Across both rays the near camera alone knows the point to 0.5 px = 1 mm, the far one to
+  // 4 mm: weighted ~0.97 mm, the plain midpoint averages them, ~2.1 mm. Along each ray only the
+  // other camera knows it, whatever the weights: the whole error is no worse.
+  const double weighted_mm = 1000.0 * std::sqrt(weighted_across / trials);
+  const double plain_mm = 1000.0 * std::sqrt(plain_across / trials);
+  EXPECT_NEAR(weighted_mm, 0.97, 0.15);
+  EXPECT_NEAR(plain_mm, 2.06, 0.3);
+  EXPECT_LE(weighted_sq, plain_sq);
+}
+
+TEST(Triangulation, AWorldSigmaFloorEvensTheWeights) {
+  // With a floor far above both cameras' pixel sigmas the weights are equal: the plain midpoint.
+  const auto cameras = testing::ClubCameras();
+  auto observations = Observe(cameras, {0.4, 0.2, 0.3}, 3);
+  observations[0].pixel += Eigen::Vector2d(1.5, -1.0);
+  TriangulationOptions floor;
+  floor.pixel_sigma = 0.5;
+  floor.ray_sigma_m = 10.0;
+  const auto plain = TriangulateObservations(cameras, observations);
+  const auto even = TriangulateObservations(cameras, observations, floor);
+  ASSERT_TRUE(plain && even);
+  EXPECT_LT((plain->point - even->point).norm(), 1e-7);
+  TriangulationOptions bad;
+  bad.ray_sigma_m = -1.0;
+  std::string error;
+  EXPECT_FALSE(bad.IsValid(&error));
+}
+
 }  // namespace
 }  // namespace p4

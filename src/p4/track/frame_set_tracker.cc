@@ -26,6 +26,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "max_size_ratio and max_view_size_ratio must be above 1, the margin >= 0";
     return false;
   }
+  if (!(pixel_sigma > 0.0) || !(centre_sigma_share >= 0.0)) {
+    if (error) *error = "pixel_sigma must be positive, centre_sigma_share at least 0";
+    return false;
+  }
   if (!(motion_max_gap_s > 0.0) || !(motion_max_px_s > 0.0)) {
     if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
     return false;
@@ -119,6 +123,8 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
   options_.epipolar.max_z = options_.hall_half_size.z();
   options_.epipolar.floor_z = table::kFloorZ - 0.02;
   options_.epipolar.ball_radius = table::kBallRadius;
+  triangulation_.pixel_sigma = options_.pixel_sigma;
+  triangulation_.ray_sigma_m = options_.centre_sigma_share * table::kBallDiameter;
   if (options.threads > 1 && rig.size() > 1) {
     pool_ = std::make_unique<CameraPool>(std::min(options.threads, rig.size()));
   }
@@ -912,7 +918,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
         }
       }
       if (o.size() >= 2) {
-        if (const auto e = TriangulateObservations(rig_.cameras, o);
+        if (const auto e = TriangulateObservations(rig_.cameras, o, triangulation_);
             e && e->mean_reprojection_px <= options_.reprojection_px) {
           views.estimate = *e;
           r.measurement = ToMeasurement(views);
@@ -940,7 +946,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
     backward.Reset(x, p);
     if (observations.size() >= 2) {
       // Two views or more: the flight only tells which; the point is theirs.
-      const auto estimate = TriangulateObservations(rig_.cameras, observations);
+      const auto estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
       if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) break;
       views.estimate = *estimate;
       r.measurement = ToMeasurement(views);
@@ -1007,7 +1013,7 @@ void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_
     ViewsOnFlight(set, x.head<3>(), &r, &observations, &views);
     if (observations.empty()) continue;
     if (observations.size() >= 2) {
-      const auto estimate = TriangulateObservations(rig_.cameras, observations);
+      const auto estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
       if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) continue;
       views.estimate = *estimate;
       r.measurement = ToMeasurement(views);
@@ -1227,7 +1233,7 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
             continue;
           }
           observations = {{i, da.pixel}, {j, db.pixel}};
-          auto estimate = TriangulateObservations(rig_.cameras, observations);
+          auto estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
           if (!estimate) continue;
           Hypothesis h;
           h.members = {{i, a}, {j, b}};
@@ -1262,7 +1268,7 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           }
           if (misfit && options_.misfit_view_rejects_pair) continue;
           if (h.members.size() > 2) {
-            estimate = TriangulateObservations(rig_.cameras, observations);
+            estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
             if (!estimate) continue;
           }
           if (estimate->mean_reprojection_px > options_.reprojection_px) continue;
@@ -1291,7 +1297,8 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           }
           if (!sized) continue;
           if (options_.shade_correction) {
-            if (auto e = TriangulateObservations(rig_.cameras, shaded)) h.estimate = *e;
+            if (auto e = TriangulateObservations(rig_.cameras, shaded, triangulation_))
+              h.estimate = *e;
           }
           out.push_back(std::move(h));
         }
