@@ -22,43 +22,59 @@ bool TriangulationOptions::IsValid(std::string* error) const {
   return true;
 }
 
-std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
-                                                   const TriangulationOptions& options,
-                                                   std::span<const double> weights) {
-  if (rays.size() < 2 || (!weights.empty() && weights.size() != rays.size())) return std::nullopt;
-  // Minimise sum w_i |(I - d d^T)(X - o)|^2  =>  (sum w_i P_i) X = sum w_i P_i o_i,
-  // P_i = I - d_i d_i^T. The conditioning is the rays' own (sum P_i), whatever the weights.
-  Eigen::Matrix3d a = Eigen::Matrix3d::Zero(), weighted = Eigen::Matrix3d::Zero();
+namespace {
+
+// The rays' distances to `point`: false when it lies behind (or within min_depth of) a ray's
+// origin; else their RMS into `result`.
+bool RayDistances(std::span<const Ray> rays, const TriangulationOptions& options,
+                  TriangulationResult* result) {
+  double sum_sq = 0.0;
+  for (const Ray& ray : rays) {
+    const Eigen::Vector3d to_point = result->point - ray.origin;
+    const double depth = to_point.dot(ray.direction);
+    if (depth < options.min_depth) return false;
+    sum_sq += (to_point - depth * ray.direction).squaredNorm();
+  }
+  result->rms_ray_distance = std::sqrt(sum_sq / static_cast<double>(rays.size()));
+  return true;
+}
+
+// The point minimising sum w_i |(I - d_i d_i^T)(X - o_i)|^2 (one positive weight per ray;
+// the rays' conditioning checked by the caller).
+Eigen::Vector3d WeightedPoint(std::span<const Ray> rays, std::span<const double> weights) {
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    const Ray& ray = rays[i];
-    const double w = weights.empty() ? 1.0 : weights[i];
-    if (!(w > 0.0)) return std::nullopt;
+    const Eigen::Matrix3d p = weights[i] * (Eigen::Matrix3d::Identity() -
+                                            rays[i].direction * rays[i].direction.transpose());
+    a += p;
+    b += p * rays[i].origin;
+  }
+  return a.ldlt().solve(b);
+}
+
+}  // namespace
+
+std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
+                                                   const TriangulationOptions& options) {
+  if (rays.size() < 2) return std::nullopt;
+  // Minimise sum |(I - d d^T)(X - o)|^2  =>  (sum P_i) X = sum P_i o_i, P_i = I - d_i d_i^T.
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (const Ray& ray : rays) {
     const Eigen::Matrix3d p =
         Eigen::Matrix3d::Identity() - ray.direction * ray.direction.transpose();
     a += p;
-    weighted += w * p;
-    b += w * p * ray.origin;
+    b += p * ray.origin;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(a);
   const Eigen::Vector3d& lambda = eigen.eigenvalues();  // ascending
   TriangulationResult result;
   result.conditioning = lambda(2) > 0.0 ? lambda(0) / lambda(2) : 0.0;
   if (!(result.conditioning >= options.min_conditioning) || lambda(0) <= 0.0) return std::nullopt;
-  if (weights.empty()) {
-    result.point =
-        eigen.eigenvectors() * (eigen.eigenvectors().transpose() * b).cwiseQuotient(lambda);
-  } else {
-    result.point = weighted.ldlt().solve(b);
-  }
-  double sum_sq = 0.0;
-  for (const Ray& ray : rays) {
-    const Eigen::Vector3d to_point = result.point - ray.origin;
-    const double depth = to_point.dot(ray.direction);
-    if (depth < options.min_depth) return std::nullopt;
-    sum_sq += (to_point - depth * ray.direction).squaredNorm();
-  }
-  result.rms_ray_distance = std::sqrt(sum_sq / static_cast<double>(rays.size()));
+  result.point =
+      eigen.eigenvectors() * (eigen.eigenvectors().transpose() * b).cwiseQuotient(lambda);
+  if (!RayDistances(rays, options, &result)) return std::nullopt;
   return result;
 }
 
@@ -86,7 +102,8 @@ std::optional<PointEstimate> TriangulateObservations(std::span<const Camera> cam
   auto result = TriangulateRays(rays, options);
   if (!result) return std::nullopt;
   if (options.pixel_sigma > 0.0) {
-    // Each ray's sigma in metres at the point: its pixels' at the range found last.
+    // Each ray's sigma in metres at the point: its pixels' at the range found last. The rays'
+    // conditioning does not depend on the weights: checked once, above.
     std::vector<double> weights(rays.size());
     for (int pass = 0; pass < options.reweightings; ++pass) {
       for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -95,9 +112,8 @@ std::optional<PointEstimate> TriangulateObservations(std::span<const Camera> cam
         const double across = options.pixel_sigma * range / (0.5 * (camera.fx + camera.fy));
         weights[i] = 1.0 / (across * across + options.ray_sigma_m * options.ray_sigma_m);
       }
-      const auto weighted = TriangulateRays(rays, options, weights);
-      if (!weighted) return std::nullopt;
-      result = weighted;
+      result->point = WeightedPoint(rays, weights);
+      if (!RayDistances(rays, options, &*result)) return std::nullopt;
     }
   }
   PointEstimate estimate;

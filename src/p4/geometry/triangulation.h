@@ -45,13 +45,11 @@ struct TriangulationResult {
   double conditioning = 0.0;      // lambda_min / lambda_max of the normal matrix, in [0, 1]
 };
 
-// Least-squares point closest to at least two rays, each ray's squared distance times its
-// weight (`weights` empty: all 1; else one positive weight per ray). nullopt for fewer than two
-// rays, for (anti)parallel rays (conditioning, of the unweighted rays, below the option) or a
-// point behind a ray's origin.
+// Least-squares point closest to at least two rays (equal weights: the paper's). nullopt for
+// fewer than two rays, for (anti)parallel rays (conditioning below the option) or a point
+// behind a ray's origin.
 std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
-                                                   const TriangulationOptions& options = {},
-                                                   std::span<const double> weights = {});
+                                                   const TriangulationOptions& options = {});
 
 // One camera's view of the ball.
 struct Observation {

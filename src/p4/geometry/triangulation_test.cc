@@ -116,8 +116,9 @@ TEST(Triangulation, ViewsWeightedByTheirPixelsFollowTheCameraNearTheBall) {
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0.0, 0.5);
   // The direction across both rays, where each camera alone knows the point.
-  const Eigen::Vector3d across = (cameras[0].RayDirection({641.5, 359.0}))
-                                     .cross(cameras[1].RayDirection({641.5, 359.0}))
+  const Eigen::Vector3d across = cameras[0]
+                                     .RayDirection({cameras[0].cx, cameras[0].cy})
+                                     .cross(cameras[1].RayDirection({cameras[1].cx, cameras[1].cy}))
                                      .normalized();
   double plain_sq = 0.0, weighted_sq = 0.0, plain_across = 0.0, weighted_across = 0.0;
   const int trials = 400;

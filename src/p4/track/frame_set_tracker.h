@@ -105,7 +105,7 @@ struct FrameSetOptions {
   // accepted views of sports tuning 1-18, 26, 28, 29, 34, 37-48 against the renderer's
   // projection: median error 0.2-0.34 px at every size, RMS 0.56 px at 7 px, 0.77 at 14, 1.07
   // at 25 (the tails of partly hidden and merged balls grow with the ball): RMS^2 ~ 0.5^2 +
-  // (0.038 d)^2 (docs/DECISIONS.md, "Triangulation").
+  // (0.038 d)^2 (docs/DECISIONS.md, "Tracking").
   double centre_sigma_share = 0.038;
   double diameter_sigma = 0.35;    // diameter noise, px (refined)
   double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
