@@ -109,7 +109,8 @@ std::optional<PointEstimate> TriangulateObservations(std::span<const Camera> cam
       for (std::size_t i = 0; i < rays.size(); ++i) {
         const Camera& camera = cameras[observations[i].camera];
         const double range = (result->point - rays[i].origin).dot(rays[i].direction);
-        const double across = options.pixel_sigma * range / (0.5 * (camera.fx + camera.fy));
+        const double px = std::hypot(options.pixel_sigma, observations[i].sigma_px);
+        const double across = px * range / (0.5 * (camera.fx + camera.fy));
         weights[i] = 1.0 / (across * across + options.ray_sigma_m * options.ray_sigma_m);
       }
       result->point = WeightedPoint(rays, weights);

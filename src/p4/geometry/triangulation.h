@@ -28,10 +28,11 @@ struct TriangulationOptions {
   // Weights of the views (beyond the paper's plain least squares, which counts every ray's
   // distance alike: the noise of the camera farthest from the ball, whose pixels span the most
   // millimetres there, pulls the point as much as the nearest camera's). With pixel_sigma > 0,
-  // TriangulateObservations weighs each ray's distance by 1 / sigma^2, sigma^2 = (pixel_sigma *
-  // range / f)^2 + ray_sigma_m^2: a view's centre is known to pixel_sigma in its image, plus
-  // ray_sigma_m in the world whatever the range (an error that grows with the object's size in the
-  // image). 0: equal weights, as the paper.
+  // TriangulateObservations weighs each ray's distance by 1 / sigma^2, sigma^2 = (px * range /
+  // f)^2 + ray_sigma_m^2 with px^2 = pixel_sigma^2 + the view's own sigma_px^2: a view's centre
+  // is known to pixel_sigma in its image (more where the view says so: a ball partly hidden),
+  // plus ray_sigma_m in the world whatever the range (an error that grows with the object's size
+  // in the image). 0: equal weights, as the paper.
   double pixel_sigma = 0.0;  // px
   double ray_sigma_m = 0.0;  // metres
   int reweightings = 2;      // weighted solves after the first (the ranges from the last)
@@ -55,6 +56,8 @@ std::optional<TriangulationResult> TriangulateRays(std::span<const Ray> rays,
 struct Observation {
   int camera = 0;         // index into the camera list
   Eigen::Vector2d pixel;  // distorted pixel of the ball centre
+  double sigma_px = 0.0;  // this view's own centre noise, px, beyond the options' pixel_sigma
+                          // (used only when the options weigh the views)
 };
 
 struct PointEstimate {

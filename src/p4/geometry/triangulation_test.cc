@@ -153,6 +153,25 @@ TEST(Triangulation, ViewsWeightedByTheirPixelsFollowTheCameraNearTheBall) {
   EXPECT_LE(weighted_sq, plain_sq);
 }
 
+TEST(Triangulation, AViewOfItsOwnNoiseCountsTheLess) {
+  // Three cameras; one view's centre is 3 px off (a half-hidden ball) and says so (sigma_px 3):
+  // the point keeps to the other two.
+  const auto cameras = testing::ClubCameras();
+  const Eigen::Vector3d point(0.4, 0.2, 0.3);
+  auto observations = Observe(cameras, point, 3);
+  observations[1].pixel += Eigen::Vector2d(3.0, 0.0);
+  TriangulationOptions weighted;
+  weighted.pixel_sigma = 0.5;
+  const auto blind = TriangulateObservations(cameras, observations, weighted);
+  observations[1].sigma_px = 3.0;
+  const auto told = TriangulateObservations(cameras, observations, weighted);
+  ASSERT_TRUE(blind && told);
+  const double blind_mm = 1000.0 * (blind->point - point).norm();
+  const double told_mm = 1000.0 * (told->point - point).norm();
+  EXPECT_GT(blind_mm, 2.0);  // 3 px at ~4 m: ~12 mm across its ray, shared with two exact views
+  EXPECT_LT(told_mm, 0.25 * blind_mm);  // the noisy view weighs 1/37 of each other one
+}
+
 TEST(Triangulation, AWorldSigmaFloorEvensTheWeights) {
   // With a floor far above both cameras' pixel sigmas the weights are equal: the plain midpoint.
   const auto cameras = testing::ClubCameras();

@@ -26,8 +26,9 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "max_size_ratio and max_view_size_ratio must be above 1, the margin >= 0";
     return false;
   }
-  if (!(pixel_sigma > 0.0) || !(centre_sigma_share >= 0.0)) {
-    if (error) *error = "pixel_sigma must be positive, centre_sigma_share at least 0";
+  if (!(pixel_sigma > 0.0) || !(centre_sigma_share >= 0.0) || !(misfit_sigma_share >= 0.0)) {
+    if (error)
+      *error = "pixel_sigma must be positive, centre_sigma_share and misfit_sigma_share >= 0";
     return false;
   }
   if (!(motion_max_gap_s > 0.0) || !(motion_max_px_s > 0.0)) {
@@ -1286,7 +1287,12 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
           std::vector<Observation> shaded;  // the views' centres moved back from shade
           for (const auto& [c, m] : h.members) {
             const double expected = ExpectedDiameterPx(rig_.cameras[c], estimate->point);
-            shaded.push_back({c, ShadedCentre(candidates[c][m], expected)});
+            // A view short of the ball's size there has its centre known the less (a faint
+            // streak's width is no measure of what is hidden).
+            const Detection& view = candidates[c][m];
+            const double short_px = view.streak ? 0.0 : std::max(0.0, expected - view.diameter_px);
+            shaded.push_back(
+                {c, ShadedCentre(view, expected), options_.misfit_sigma_share * short_px});
             if (!ViewSizeFits(candidates[c][m].diameter_px, expected)) {
               sized = false;
               break;

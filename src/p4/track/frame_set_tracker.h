@@ -107,6 +107,13 @@ struct FrameSetOptions {
   // at 25 (the tails of partly hidden and merged balls grow with the ball): RMS^2 ~ 0.5^2 +
   // (0.038 d)^2 (docs/DECISIONS.md, "Tracking").
   double centre_sigma_share = 0.038;
+  // ...and a view m px short of the ball's size at the point is known to misfit_sigma_share * m
+  // px more (a side hidden moves the centre by up to half the missing width; faint streaks
+  // excepted). Measured on the same views: RMS error 1.17 / 1.64 / 1.93 / 2.58 px where a view
+  // was 0.7-0.8 / 0.6-0.7 / 0.5-0.6 / under 0.5 of the ball's size (2.1 / 3.4 / 5.1 / 6.1 px
+  // short), 0.33 px at 0.9-1.0. (Views over the size, 0.72 px at 1.1-1.3, keep pixel_sigma: so
+  // weighed, a wrong third view of a webcam rig let its pair make rows 1-2 m off.)
+  double misfit_sigma_share = 0.5;
   double diameter_sigma = 0.35;    // diameter noise, px (refined)
   double diameter_bias_px = 0.65;  // the binary region is this much narrower than the ball
   bool refine = true;              // the diameter from luma coverage (MeasureBall)

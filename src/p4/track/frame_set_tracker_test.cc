@@ -941,6 +941,38 @@ TEST_F(ThreeCameraTest, ABallBeforeAShirtOfItsColourInOneCameraIsMeasuredByTheOt
   }
 }
 
+TEST_F(ThreeCameraTest, AHalfHiddenViewCountsLessThanTheWholeOnes) {
+  // Cameras 0 and 1 see the whole ball; camera 2 only the part a racket leaves of it (a disc of
+  // half its diameter at one side: the centre a quarter of a diameter off). Weighed as the whole
+  // views, that view pulls the point 5 mm off; known to half its missing width, it counts the
+  // less (misfit_sigma_share).
+  const auto error_mm = [&](double share) {
+    FrameSetOptions options;
+    options.misfit_sigma_share = share;
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    double sum_sq = 0.0;
+    int measured = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d away(0.0, 60.0, -30.0);
+      const auto views = FramesAt({Ball(k), Ball(k), away}, k);
+      const Camera& camera = rig_.cameras[2];
+      const auto px = camera.Project(Ball(k));
+      EXPECT_TRUE(px.has_value());
+      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+      PaintOrange(2, px->x() + 0.5 * r, px->y(), 0.5 * r);
+      const auto result = tracker.Process(FromSeconds(k / 120.0), views);
+      if (!result.measurement || result.measurement->cameras != 3) continue;
+      sum_sq += (result.measurement->position - Ball(k)).squaredNorm();
+      ++measured;
+    }
+    EXPECT_GE(measured, 6) << share;  // the first sets wait for the flight to confirm
+    return 1000.0 * std::sqrt(sum_sq / std::max(1, measured));
+  };
+  const double blind = error_mm(0.0), told = error_mm(0.5);
+  EXPECT_GT(blind, 3.0);          // 5.0 mm
+  EXPECT_LT(told, 0.65 * blind);  // 2.9 mm
+}
+
 TEST_F(ThreeCameraTest, AFragmentInAThirdCameraDoesNotKeepAWholePairFromBeingTheBall) {
   // A ball hit just before the recording ends (AFlightCutShortByTheRecordingsEndIsRows):
   // cameras 0 and 1 see the whole ball in the last 3 sets, while camera 2's tables take only a
