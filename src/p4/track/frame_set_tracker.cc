@@ -1293,13 +1293,13 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
             const double short_px = view.streak ? 0.0 : std::max(0.0, expected - view.diameter_px);
             shaded.push_back(
                 {c, ShadedCentre(view, expected), options_.misfit_sigma_share * short_px});
-            if (!ViewSizeFits(candidates[c][m].diameter_px, expected)) {
+            if (!ViewSizeFits(view.diameter_px, expected)) {
               sized = false;
               break;
             }
             // Smaller than a half-hidden ball: the part of a shaded ball that the tables took.
-            if (Fragment(candidates[c][m].diameter_px, expected)) h.fragment = true;
-            h.size_misfit += std::abs(std::log(candidates[c][m].diameter_px / expected));
+            if (Fragment(view.diameter_px, expected)) h.fragment = true;
+            h.size_misfit += std::abs(std::log(view.diameter_px / expected));
           }
           if (!sized) continue;
           if (options_.shade_correction) {
