@@ -71,7 +71,7 @@ LiveHub::~LiveHub() {
 }
 
 std::shared_ptr<const std::string> LiveHub::State() const {
-  std::lock_guard lock(mutex_);
+  std::lock_guard lock(state_mutex_);
   return state_;
 }
 
@@ -103,7 +103,7 @@ void LiveHub::OnSourceEvent(const SourceEvent& event) {
     state["cameras"][event.source]["lost"] = !event.back;
   }
   auto text = std::make_shared<const std::string>(state.dump());
-  std::lock_guard lock(mutex_);
+  std::lock_guard lock(state_mutex_);
   state_ = std::move(text);
 }
 
@@ -230,7 +230,7 @@ void LiveHub::OnFrameSet(const FrameSet& set, const track::FrameSetResult& resul
   auto text = std::make_shared<const std::string>(state.dump());
   // Never wait for a reader: the UI's threads run at the lowest priority and one holding the lock
   // may not get the CPU for a while. Busy: this state is dropped, the next frame set publishes.
-  std::unique_lock lock(mutex_, std::try_to_lock);
+  std::unique_lock lock(state_mutex_, std::try_to_lock);
   if (!lock.owns_lock()) {
     last_state_t_ = skipped_state_t;
     return;

@@ -83,8 +83,12 @@ class LiveHub : public LiveSink {
   std::vector<bool> lost_;  // per camera: a live source being opened again
   TimeNs last_state_t_ = -(int64_t{1} << 62), last_frame_t_ = -(int64_t{1} << 62);
 
-  mutable std::mutex mutex_;
+  // The state alone (pointer copies by the tracking and web threads): the encoder, which takes
+  // mutex_ for its pictures and may be descheduled holding it (it runs niced), never makes the
+  // tracking thread drop a state.
+  mutable std::mutex state_mutex_;
   std::shared_ptr<const std::string> state_;
+  mutable std::mutex mutex_;  // the pictures, JPEGs and markers below
   std::vector<std::shared_ptr<const std::string>> jpeg_;
   // Handed to the encoder: one picture per camera, I420, copied.
   std::vector<I420Image> pending_;
