@@ -81,6 +81,17 @@ class FrameSetTrackerTest : public RenderedRigTest {
   // Paints an orange disc into camera c's frame (a second orange object).
   void PaintOrange(int c, double cx, double cy, double r) { PaintDisc(c, cx, cy, r, 137, 65, 199); }
 
+  // The ball at p in camera c's image: its centre and radius, px (throws, failing the test, where
+  // p does not project).
+  struct Disc {
+    Eigen::Vector2d centre;
+    double r = 0.0;
+  };
+  Disc BallDisc(int c, const Eigen::Vector3d& p) const {
+    const Camera& camera = rig_.cameras[c];
+    return {camera.Project(p).value(), 0.5 * SphereDiameterPx(camera, p, table::kBallRadius)};
+  }
+
   // The rows a tracker with `options` writes through the hold (as RunTracking does) for `sets`
   // frame sets at `fps`, each camera's picture of set k rendered by paint(k, t) into frames_.
   // The recording's end as RunTracking has it (FrameSetTracker::Finish) unless `finish` is false.
@@ -819,11 +830,9 @@ TEST_F(SharpRigTest, AShadedBallWhoseLitPartAloneIsInTheTablesIsMeasuredWhole) {
   const auto shaded_frames = [&](int k) {
     auto views = Frames(std::nullopt, k);
     for (int c = 0; c < 2; ++c) {
-      const Camera& camera = rig_.cameras[c];
-      const auto px = camera.Project(Ball(k));
-      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
-      PaintDisc(c, px->x(), px->y(), r, 120, 75, 160);
-      PaintOrange(c, px->x(), px->y() - 0.6 * r, 0.25 * r);
+      const auto [px, r] = BallDisc(c, Ball(k));
+      PaintDisc(c, px.x(), px.y(), r, 120, 75, 160);
+      PaintOrange(c, px.x(), px.y() - 0.6 * r, 0.25 * r);
     }
     return views;
   };
@@ -849,14 +858,12 @@ TEST_F(SharpRigTest, ABallMergedWithTheHittersHandInOneViewMakesNoPointThere) {
   const auto merged_frames = [&](int k) {
     auto views = Frames(Ball(k), k);
     if (k >= 6) {
-      const Camera& camera = rig_.cameras[1];
-      const auto px = camera.Project(Ball(k));
-      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+      const auto [px, r] = BallDisc(1, Ball(k));
       // Camera 0's ray through the ball, seen by camera 1: the epipolar line's direction.
       const Eigen::Vector3d ray = (Ball(k) - rig_.cameras[0].Center()).normalized();
-      const auto far = camera.Project(Ball(k) + 0.2 * ray);
-      const Eigen::Vector2d along = (*far - *px).normalized();
-      PaintOrange(1, px->x() + 1.6 * r * along.x(), px->y() + 1.6 * r * along.y(), 1.65 * r);
+      const auto far = rig_.cameras[1].Project(Ball(k) + 0.2 * ray);
+      const Eigen::Vector2d along = (*far - px).normalized();
+      PaintOrange(1, px.x() + 1.6 * r * along.x(), px.y() + 1.6 * r * along.y(), 1.65 * r);
     }
     return views;
   };
@@ -883,10 +890,8 @@ TEST_F(SharpRigTest, ABallTheTablesMissInOneCameraIsFoundAlongTheOthersEpipolar)
   // a dark orange none of the tables' boxes takes (Y 80, V 150), of the same hue.
   const auto frames = [&](int k) {
     auto views = Frames(Ball(k), k);
-    const Camera& camera = rig_.cameras[1];
-    const auto px = camera.Project(Ball(k));
-    const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
-    PaintDisc(1, px->x(), px->y(), r + 0.7, 80, 95, 150);
+    const auto [px, r] = BallDisc(1, Ball(k));
+    PaintDisc(1, px.x(), px.y(), r + 0.7, 80, 95, 150);
     return views;
   };
   for (const bool search : {true, false}) {
@@ -923,11 +928,8 @@ TEST_F(ThreeCameraTest, ABallBeforeAShirtOfItsColourInOneCameraIsMeasuredByTheOt
     FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
     for (int k = 0; k < 8; ++k) {
       auto views = Frames(Ball(k), k);
-      const Camera& camera = rig_.cameras[2];
-      const auto px = camera.Project(Ball(k));
-      ASSERT_TRUE(px.has_value());
-      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
-      PaintOrange(2, px->x() + 2.0, px->y(), 3.0 * r);
+      const auto [px, r] = BallDisc(2, Ball(k));
+      PaintOrange(2, px.x() + 2.0, px.y(), 3.0 * r);
       const auto result = tracker.Process(FromSeconds(k / 120.0), views);
       if (rejects) {  // the colour learner's way: no pair, no measurement
         EXPECT_FALSE(result.measurement.has_value()) << k;
@@ -955,11 +957,8 @@ TEST_F(ThreeCameraTest, AHalfHiddenViewCountsLessThanTheWholeOnes) {
     for (int k = 0; k < 8; ++k) {
       const Eigen::Vector3d away(0.0, 60.0, -30.0);
       const auto views = FramesAt({Ball(k), Ball(k), away}, k);
-      const Camera& camera = rig_.cameras[2];
-      const auto px = camera.Project(Ball(k));
-      EXPECT_TRUE(px.has_value());
-      const double r = 0.5 * SphereDiameterPx(camera, Ball(k), table::kBallRadius);
-      PaintOrange(2, px->x() + 0.5 * r, px->y(), 0.5 * r);
+      const auto [px, r] = BallDisc(2, Ball(k));
+      PaintOrange(2, px.x() + 0.5 * r, px.y(), 0.5 * r);
       const auto result = tracker.Process(FromSeconds(k / 120.0), views);
       if (!result.measurement || result.measurement->cameras != 3) continue;
       sum_sq += (result.measurement->position - Ball(k)).squaredNorm();
