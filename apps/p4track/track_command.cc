@@ -33,6 +33,7 @@ struct TrackArgs {
   std::string rig, out, classes, ball = "auto", filter = "p4";
   std::vector<std::string> sources;
   bool no_roi = false, no_single_camera = false, no_smoothing = false, no_confirm = false;
+  bool no_flight_check = false;
   std::string detector = "auto", streaks = "auto";
   int stride = 1, threads = 1, candidates = 8;
   double epipolar_px = 4.0;
@@ -53,7 +54,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(TrackArgs, rig, out, classes, ba
                                                 detector, streaks, stride, threads, candidates,
                                                 epipolar_px, players, first_server, best_of,
                                                 no_referee, no_sync, rolling_shutter, max_offset,
-                                                ui, realtime, loop, layout, web)
+                                                ui, realtime, loop, layout, web, no_flight_check)
 
 // DIR/run.json: the run's options (paths made absolute, so that --resume works from anywhere) and
 // whether it finished. Written when a run starts and when it ends (atomically).
@@ -333,6 +334,7 @@ int Run(TrackArgs a) {
   RunExtras extras;
   extras.realtime = a.realtime;
   extras.smooth_one_camera = !a.no_smoothing;
+  extras.check_flight = !a.no_flight_check;
   extras.loop = a.loop;
   extras.resume = resume;
   // Ctrl-C ends the run as the sources' end would: held rows written, the score final.
@@ -426,6 +428,10 @@ std::function<int()> AddTrackCommand(CLI::App& app) {
   cmd->add_flag("--no-confirm", args->no_confirm,
                 "Start a track from any two measurements that agree (the paper's way) instead of "
                 "waiting until the candidate has flown 10 cm in 4 frame sets");
+  cmd->add_flag(
+      "--no-flight-check", args->no_flight_check,
+      "Write every measurement as measured, also one 6 cm or more off the ball's flight "
+      "on both sides of it (2+ cameras; a wrong pair of views, an arm taken for the ball)");
   cmd->add_option("--detector", args->detector,
                   "colour: the colour tables (the paper's); masked: the tables where the picture "
                   "differs from a learnt background; coverage: the tables, each region measured "

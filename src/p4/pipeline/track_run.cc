@@ -32,6 +32,9 @@ std::string TrackRunSummary::Report() const {
       frame_sets, video_seconds, wall_seconds, measured,
       frame_sets ? 100.0 * measured / frame_sets : 0.0, multi_view, measurements_per_second(),
       roi_searches ? 100.0 * roi_hits / roi_searches : 0.0);
+  if (off_flight > 0) {
+    report += fmt::format("; {} measurement(s) off the ball's flight dropped", off_flight);
+  }
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
@@ -63,6 +66,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::string why;
   if (!options.IsValid(&why)) throw Error("tracking options: " + why);
   if (!game.IsValid(&why)) throw Error("game options: " + why);
+  if (!extras.flight_check.IsValid(&why)) throw Error("tracking options: " + why);
   FrameSetReaderOptions reading;
   reading.loop = extras.loop;
   reading.clocks = RigClocks(rig);
@@ -133,8 +137,14 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   // New tracks are confirmed by the ball's flight: the rows wait for the revisions that brings.
   std::optional<track::ResultHold> hold;
   if (options.confirm_tracks) hold.emplace(options.initiator.max_span_s);
-  // Confirmed first (the hold), then smoothed (one camera).
+  std::optional<track::FlightCheck> flight_check;
+  if (rig.size() >= 2 && extras.check_flight) flight_check.emplace(extras.flight_check);
+  // Confirmed first (the hold), then checked against the flight (2+ cameras) or smoothed (one).
   const auto smooth = [&](track::FrameSetResult r) {
+    if (flight_check) {
+      for (auto& c : flight_check->Push(std::move(r))) record(c);
+      return;
+    }
     if (!smoother) return record(r);
     for (const auto& s : smoother->Push(std::move(r))) record(s);
   };
@@ -213,6 +223,10 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   }
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
+  }
+  if (flight_check) {
+    for (const auto& r : flight_check->Flush()) record(r);
+    summary.off_flight = flight_check->dropped();
   }
   if (game.enabled) {
     publish(detector.Flush());

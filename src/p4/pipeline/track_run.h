@@ -16,6 +16,7 @@
 #include "p4/pipeline/frame_set_reader.h"
 #include "p4/pipeline/live_sink.h"
 #include "p4/segment/color_classes.h"
+#include "p4/track/flight_check.h"
 #include "p4/track/frame_set_tracker.h"
 #include "p4/track/monocular_smoother.h"
 
@@ -39,6 +40,10 @@ struct RunExtras {
   // A one-camera rig's rows are refined over each stroke (track::MonocularSmoother) before they
   // are written and scored: about one stroke later (the live view is not delayed).
   bool smooth_one_camera = true;
+  // A rig of 2+ cameras' measured rows are judged against the ball's flight on either side of
+  // them (track::FlightCheck) before they are written and scored: 2 horizon_s later.
+  bool check_flight = true;
+  track::FlightCheckOptions flight_check;
   // Play video files again and again until stopped (FrameSetReader's loop).
   bool loop = false;
   // Set by another thread (e.g. on Ctrl-C): the run ends after the frame set in hand, its files
@@ -57,6 +62,7 @@ struct TrackRunSummary {
   int64_t frame_sets = 0;
   int64_t measured = 0;    // time-stamps with a 3D measurement
   int64_t multi_view = 0;  // of which triangulated from >= 2 cameras
+  int64_t off_flight = 0;  // measurements dropped: off the flight on both sides (FlightCheck)
   int64_t states = 0;      // rows in trajectory.csv
   int64_t roi_hits = 0;    // camera searches that found the ball in their window
   int64_t roi_searches = 0;
