@@ -49,8 +49,10 @@ Eigen::Vector3d Ballistic(const Eigen::Vector3d& p0, const Eigen::Vector3d& v0, 
 std::vector<FrameSetResult> Flight(const std::function<Eigen::Vector3d(double)>& at = [](double t) {
   return Ballistic({-1.2, 0.1, 0.25}, {6.0, -0.5, 1.5}, t);
 }) {
+  constexpr int kRows = 60;
   std::vector<FrameSetResult> rows;
-  for (int k = 0; k < 60; ++k) rows.push_back(Row(k, at(k / kFps)));
+  rows.reserve(kRows);
+  for (int k = 0; k < kRows; ++k) rows.push_back(Row(k, at(k / kFps)));
   return rows;
 }
 
