@@ -138,7 +138,16 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   std::optional<track::ResultHold> hold;
   if (options.confirm_tracks) hold.emplace(options.initiator.max_span_s);
   std::optional<track::FlightCheck> flight_check;
-  if (rig.size() >= 2 && extras.check_flight) flight_check.emplace(extras.flight_check);
+  if (rig.size() >= 2 && extras.check_flight) {
+    // The ball's physics as the tracker's filter and bounce know it.
+    track::FlightCheckOptions checking = extras.flight_check;
+    checking.model.gravity = options.tracker.kalman.gravity;
+    checking.model.drag_per_mass = options.tracker.kalman.drag_per_mass;
+    checking.model.ball_radius = options.tracker.ball_radius;
+    checking.model.restitution = options.tracker.bounce_restitution;
+    checking.model.friction = options.tracker.bounce_friction;
+    flight_check.emplace(checking);
+  }
   // Confirmed first (the hold), then checked against the flight (2+ cameras) or smoothed (one).
   const auto smooth = [&](track::FrameSetResult r) {
     if (flight_check) {
