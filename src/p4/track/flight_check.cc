@@ -173,10 +173,34 @@ void FlightCheck::Judge(TimeNs newest, bool all) {
     for (auto& d : r.detections) d.accepted = false;
     held_[worst].score = 0.0;
     ++dropped_;
+    DropUnconfirmedStates(worst);
     for (int i = 0; i < n; ++i) {
       Held& h = held_[i];
       if (h.judged && Measured(h.result) && std::abs(h.result.t - r.t) <= horizon_) Score(i, false);
     }
+  }
+}
+
+void FlightCheck::DropUnconfirmedStates(int i) {
+  const int n = static_cast<int>(held_.size());
+  const auto has_state = [&](int j) { return held_[j].result.state.has_value(); };
+  int after = i + 1;  // the next measured row in the run (n or a row without a state: none)
+  while (after < n && has_state(after) && !Measured(held_[after].result)) ++after;
+  int before = i - 1;  // the last measured row before it in the run (-1 or stateless: none)
+  while (before >= 0 && has_state(before) && !Measured(held_[before].result)) --before;
+  const bool measured_after = after < n && has_state(after);
+  // Past held_'s start the run goes on among the released rows.
+  const bool measured_before = before >= 0 ? has_state(before) : released_run_measured_;
+  if (measured_after && measured_before) return;  // a gap between two sightings: a row
+  // No sighting after it: its state and the coast before it from the last sighting, to the
+  // run's end. No sighting before it: from the run's start to the next sighting.
+  const int from = measured_before ? before + 1 : std::max(before, 0);
+  int to = after;
+  if (!measured_after) {
+    while (to < n && has_state(to)) ++to;
+  }
+  for (int j = from; j < to; ++j) {
+    if (!Measured(held_[j].result)) held_[j].result.state.reset();
   }
 }
 
@@ -188,6 +212,7 @@ std::vector<FrameSetResult> FlightCheck::Push(FrameSetResult result) {
   while (!held_.empty() && held_.front().result.t + 2 * horizon_ <= newest) {
     FrameSetResult& r = held_.front().result;
     if (Measured(r)) past_.push_back({r.t, r.measurement->position});
+    released_run_measured_ = r.state && (released_run_measured_ || Measured(r));
     out.push_back(std::move(r));
     held_.pop_front();
   }

@@ -5,7 +5,11 @@
 // either way (restitution and friction; inverted going back). A row farther than
 // offset_m + model_accel h^2 / 2 from every side that can judge (h: the side's nearest row's time
 // away) is not the ball: a wrong pair of views, a shirt or an arm taken for the ball for one
-// time-stamp. Its measurement is dropped and its state moved onto the nearer side's flight.
+// time-stamp. Its measurement is dropped and its state moved onto the nearer side's flight; if no
+// measured row follows it in its track (the states run on without a gap), or none comes before it,
+// its state goes too, with the track's predictions from its last measurement to it and on to the
+// track's end (or from the track's start to its next measurement): rows are the ball seen or the
+// gaps between its sightings (as FrameSetTracker's dropped coasts).
 //
 // A side can judge when it has min_side_rows rows and, with 3 or more, they fit one flight within
 // side_rms_m (a side that holds a hit or a bounce between its rows does not judge). A row is kept
@@ -73,11 +77,16 @@ class FlightCheck {
   // Scores the rows whose sides are in, then drops the worst row over 1 among those whose
   // neighbours' sides are in too, again and again (all: every row, at the end).
   void Judge(TimeNs newest, bool all);
+  // held_[i] lost its measurement: without a measured row on one side of it in its run of
+  // states, the unmeasured states from the measured row on the other side to the run's end go.
+  void DropUnconfirmedStates(int i);
 
   FlightCheckOptions options_;
   TimeNs horizon_;
   std::deque<Row> past_;  // measured rows already out, within horizon_ of the oldest held
   std::deque<Held> held_;
+  // A measured row has been released since the last released row without a state.
+  bool released_run_measured_ = false;
   int dropped_ = 0;
 };
 

@@ -141,16 +141,63 @@ TEST(FlightCheck, KeepsTheRowsOfAHit) {
   }
 }
 
+// Row k of `rows` as the filter's prediction only: a state, no measurement.
+void Unmeasured(FrameSetResult* r) {
+  r->measurement.reset();
+  r->state->measured = false;
+  r->state->cameras = 0;
+}
+
 TEST(FlightCheck, DropsAWrongLastRowThatNothingAfterConfirms) {
-  // The track's last row jumps 0.7 m to something else of the ball's colour; no row follows.
+  // The track coasts two sets after its last sighting, then its last row jumps 0.7 m to something
+  // else of the ball's colour; no row follows. The wrong row goes, and with it every state after
+  // the last sighting: no view confirmed that path.
   std::vector<FrameSetResult> rows = Flight();
-  rows.resize(30);
+  rows.resize(32);
+  Unmeasured(&rows[30]);
+  Unmeasured(&rows[31]);
   rows.push_back(Row(32, rows[29].measurement->position + Eigen::Vector3d(-0.7, -0.3, 0.0)));
   int dropped = 0;
   const auto out = Check(rows, &dropped);
+  ASSERT_EQ(out.size(), rows.size());
   EXPECT_EQ(dropped, 1);
-  EXPECT_FALSE(out.back().measurement.has_value());
-  for (size_t k = 0; k + 1 < out.size(); ++k) EXPECT_TRUE(out[k].measurement.has_value()) << k;
+  for (size_t k = 0; k < out.size(); ++k) {
+    EXPECT_EQ(out[k].measurement.has_value(), k < 30) << k;
+    EXPECT_EQ(out[k].state.has_value(), k < 30) << k;
+  }
+}
+
+TEST(FlightCheck, AWrongRowBetweenSightingsKeepsTheGapsFilled) {
+  // Sightings, two predicted sets, a wrong row, one predicted set, sightings: the wrong row is
+  // a gap between sightings now, and keeps a state on the flight, as do the predicted sets.
+  std::vector<FrameSetResult> rows = Flight();
+  Unmeasured(&rows[18]);
+  Unmeasured(&rows[19]);
+  Unmeasured(&rows[21]);
+  rows[20].measurement->position += Eigen::Vector3d(0.0, -0.2, 0.05);
+  int dropped = 0;
+  const auto out = Check(rows, &dropped);
+  EXPECT_EQ(dropped, 1);
+  for (int k : {18, 19, 20, 21}) {
+    EXPECT_FALSE(out[k].measurement.has_value()) << k;
+    EXPECT_TRUE(out[k].state.has_value()) << k;
+  }
+}
+
+TEST(FlightCheck, AWrongFirstRowTakesThePredictionsBeforeTheNextSighting) {
+  // A track that starts on a wrong row, predicts one set, then sees the ball: the states before
+  // the first sighting go. (The rows before it have no state: another track, or none.)
+  std::vector<FrameSetResult> rows = Flight();
+  for (int k = 25; k < 28; ++k) rows[k].state.reset(), rows[k].measurement.reset();
+  rows[28].measurement->position += Eigen::Vector3d(0.5, 0.3, 0.2);
+  Unmeasured(&rows[29]);
+  int dropped = 0;
+  const auto out = Check(rows, &dropped);
+  EXPECT_EQ(dropped, 1);
+  EXPECT_FALSE(out[28].state.has_value());
+  EXPECT_FALSE(out[29].state.has_value());
+  EXPECT_TRUE(out[30].measurement.has_value());
+  EXPECT_TRUE(out[24].measurement.has_value());
 }
 
 TEST(FlightCheck, AWrongRowDoesNotTakeTheGoodRowBeforeItWithIt) {
