@@ -130,8 +130,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
     track::MonocularSmootherOptions smoothing;
     smoothing.pixel_sigma = options.pixel_sigma;
     smoothing.diameter_sigma = options.diameter_sigma;
-    smoothing.fit.model.drag_per_mass = options.tracker.kalman.drag_per_mass;
-    smoothing.fit.model.gravity = options.tracker.kalman.gravity;
+    smoothing.fit.model = track::FlightModelOf(options.tracker);
     smoother.emplace(rig.cameras[0], smoothing);
   }
   // New tracks are confirmed by the ball's flight: the rows wait for the revisions that brings.
@@ -139,13 +138,8 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   if (options.confirm_tracks) hold.emplace(options.initiator.max_span_s);
   std::optional<track::FlightCheck> flight_check;
   if (rig.size() >= 2 && extras.check_flight) {
-    // The ball's physics as the tracker's filter and bounce know it.
     track::FlightCheckOptions checking = extras.flight_check;
-    checking.model.gravity = options.tracker.kalman.gravity;
-    checking.model.drag_per_mass = options.tracker.kalman.drag_per_mass;
-    checking.model.ball_radius = options.tracker.ball_radius;
-    checking.model.restitution = options.tracker.bounce_restitution;
-    checking.model.friction = options.tracker.bounce_friction;
+    checking.model = track::FlightModelOf(options.tracker);
     flight_check.emplace(checking);
   }
   // Confirmed first (the hold), then checked against the flight (2+ cameras) or smoothed (one).

@@ -9,6 +9,16 @@
 
 namespace p4::track {
 
+FlightModel FlightModelOf(const TrackerOptions& o) {
+  FlightModel model;
+  model.gravity = o.kalman.gravity;
+  model.drag_per_mass = o.kalman.drag_per_mass;
+  model.ball_radius = o.ball_radius;
+  model.restitution = o.bounce_restitution;
+  model.friction = o.bounce_friction;
+  return model;
+}
+
 bool TrackerOptions::IsValid(std::string* error) const {
   if (!kalman.IsValid(error)) return false;
   if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0) || !(slow_speed >= 0.0) ||

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "p4/core/time.h"
+#include "p4/track/flight_model.h"
 #include "p4/track/kalman_filter.h"
 #include "p4/track/rts_smoother.h"
 
@@ -86,6 +87,10 @@ struct TrackerOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// The ball's physics as the filter and its table bounce take it (gravity, drag, radius,
+// restitution, friction): for the stages after the tracker that carry flights of their own.
+FlightModel FlightModelOf(const TrackerOptions& options);
 
 class BallTracker {
  public:

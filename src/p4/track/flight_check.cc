@@ -162,15 +162,12 @@ void FlightCheck::Judge(TimeNs newest, bool all) {
     Score(worst, true);
     if (held_[worst].score <= 1.0) continue;
     FrameSetResult& r = held_[worst].result;
-    r.measurement.reset();
+    ClearMeasurement(&r);
     if (r.state) {
       r.state->position = held_[worst].on_flight.head<3>();
       r.state->velocity = held_[worst].on_flight.tail<3>();
-      r.state->measured = false;
-      r.state->cameras = 0;
       r.state->residual_px = 0.0;
     }
-    for (auto& d : r.detections) d.accepted = false;
     held_[worst].score = 0.0;
     ++dropped_;
     DropUnconfirmedStates(worst);

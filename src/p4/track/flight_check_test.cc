@@ -142,11 +142,7 @@ TEST(FlightCheck, KeepsTheRowsOfAHit) {
 }
 
 // Row k of `rows` as the filter's prediction only: a state, no measurement.
-void Unmeasured(FrameSetResult* r) {
-  r->measurement.reset();
-  r->state->measured = false;
-  r->state->cameras = 0;
-}
+void Unmeasured(FrameSetResult* r) { ClearMeasurement(r); }
 
 TEST(FlightCheck, DropsAWrongLastRowThatNothingAfterConfirms) {
   // The track coasts two sets after its last sighting, then its last row jumps 0.7 m to something

@@ -1670,4 +1670,13 @@ void FrameSetTracker::PlaceLoneViews(FrameSetResult* result) {
                    [](const Revision& a, const Revision& b) { return a.t < b.t; });
 }
 
+void ClearMeasurement(FrameSetResult* result) {
+  result->measurement.reset();
+  for (Detection& d : result->detections) d.accepted = false;
+  if (result->state) {
+    result->state->measured = false;
+    result->state->cameras = 0;
+  }
+}
+
 }  // namespace p4::track

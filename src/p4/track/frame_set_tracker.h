@@ -332,6 +332,10 @@ struct FrameSetResult {
   std::vector<CameraSearch> searches;  // one per camera of the rig
 };
 
+// The time-stamp keeps no measurement: none of its detections accepted, its state (if any) no
+// measured one (position and velocity as they were).
+void ClearMeasurement(FrameSetResult* result);
+
 class FrameSetTracker {
  public:
   // Preconditions: rig and options valid, classes valid and with a "ball" class.

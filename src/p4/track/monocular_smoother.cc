@@ -549,15 +549,9 @@ void MonocularSmoother::BreakChain(const Piece& rest) {
   junctions_.clear();
 }
 
-void MonocularSmoother::Unmeasure(FrameSetResult* r) {
-  r->measurement.reset();
-  for (Detection& d : r->detections) d.accepted = false;
-  if (r->state) r->state->measured = false, r->state->cameras = 0;
-}
-
 void MonocularSmoother::Unmeasure(double t) {
   for (FrameSetResult& r : held_) {
-    if (std::abs(ToSeconds(r.t) - t) < 1e-9) Unmeasure(&r);
+    if (std::abs(ToSeconds(r.t) - t) < 1e-9) ClearMeasurement(&r);
   }
 }
 
@@ -565,7 +559,7 @@ std::vector<FrameSetResult> MonocularSmoother::Release(double before_t) {
   std::vector<FrameSetResult> out;
   while (!held_.empty() && ToSeconds(held_.front().t) < before_t - 1e-9) {
     if (!placed_.front() && !options_.unplaced_rows_measured && held_.front().measurement) {
-      Unmeasure(&held_.front());
+      ClearMeasurement(&held_.front());
     }
     out.push_back(std::move(held_.front()));
     held_.pop_front();

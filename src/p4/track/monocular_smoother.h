@@ -162,7 +162,6 @@ class MonocularSmoother {
   void BreakChain(const Piece& rest);
   // A view that is no view of the ball's flight (off every piece at a bend): its row is no
   // measurement (the filter's place stays, unless a fit later spans it).
-  static void Unmeasure(FrameSetResult* result);
   void Unmeasure(double t);  // the held row at t
   std::vector<FrameSetResult> Release(double before_t);
 
