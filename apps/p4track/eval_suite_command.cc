@@ -266,8 +266,8 @@ int Run(const SuiteArgs& a) {
   // --findable: per scene, the share of frames whose ball could be found at all (at its true
   // place), beside the recall.
   std::string findable_table =
-      "\n| family | set | seed | findable % (>= 2 cameras) | recall % | per camera: found / seen "
-      "|\n| --- | --- | --- | --- | --- | --- |\n";
+      "\n| family | set | seed | findable % (>= 2 cameras) | startable % (>= 2 cameras) | recall % "
+      "| per camera: found / seen (started) |\n| --- | --- | --- | --- | --- | --- | --- |\n";
   int index = 0;
   for (const SuiteScene& scene : scenes) {
     ++index;
@@ -286,15 +286,19 @@ int Run(const SuiteArgs& a) {
       row["findable"] = {{"share", std::round(f.share() * 1e5) / 1e5},
                          {"frames_seen", f.frames_seen},
                          {"frames_findable", f.frames_findable},
+                         {"startable_share", std::round(f.startable_share() * 1e5) / 1e5},
+                         {"frames_startable", f.frames_startable},
                          {"camera_seen", f.camera_seen},
-                         {"camera_found", f.camera_found}};
+                         {"camera_found", f.camera_found},
+                         {"camera_started", f.camera_started}};
       std::vector<std::string> cameras;
       for (std::size_t c = 0; c < f.camera_seen.size(); ++c) {
-        cameras.push_back(fmt::format("{}/{}", f.camera_found[c], f.camera_seen[c]));
+        cameras.push_back(
+            fmt::format("{}/{} ({})", f.camera_found[c], f.camera_seen[c], f.camera_started[c]));
       }
       findable_table += fmt::format(
-          "| {} | {} | {} | {:.1f} | {} | {} |\n", scene.family, scene.set, scene.seed,
-          100.0 * f.share(),
+          "| {} | {} | {} | {:.1f} | {:.1f} | {} | {} |\n", scene.family, scene.set, scene.seed,
+          100.0 * f.share(), 100.0 * f.startable_share(),
           outcome.failed.empty() ? Figure(outcome.figures, "recall", 100.0, 1) : std::string("-"),
           fmt::format("{}", fmt::join(cameras, " ")));
     }
@@ -478,7 +482,8 @@ std::function<int()> AddEvalSuiteCommand(CLI::App& app) {
   cmd->add_flag("--findable", args->findable,
                 "Also measure each scene's findable share: the frames whose ball the streak search "
                 "finds at its true place in 2 cameras or more (a ceiling for recall; cameras in "
-                "step only)");
+                "step only), and the startable share: those the whole-image streak finder, with "
+                "no prediction, also finds in 2 cameras or more");
   cmd->add_option("--ball", args->ball,
                   "auto: track as `track` does by default (--ball auto: the colour learnt from the "
                   "scene); hint: with the scene's ball colour named (--ball orange|white|yellow)")

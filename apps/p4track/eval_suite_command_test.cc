@@ -58,7 +58,14 @@ TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
       EXPECT_LE(findable["camera_found"][c].get<int>(), findable["camera_seen"][c].get<int>());
       EXPECT_GE(findable["camera_found"][c].get<int>(),
                 0.8 * findable["camera_seen"][c].get<int>());
+      // What the whole-image finder also finds is a part of what the search finds.
+      EXPECT_LE(findable["camera_started"][c].get<int>(),
+                findable["camera_found"][c].get<int>());
     }
+    EXPECT_LE(findable["frames_startable"].get<int>(), findable["frames_findable"].get<int>());
+    EXPECT_NEAR(findable["startable_share"].get<double>(),
+                findable["frames_startable"].get<double>() / findable["frames_seen"].get<int>(),
+                1e-4);
   }
   const auto& sports = suite["scenes"][0]["figures"];
   EXPECT_LE(sports["position_rmse_mm"].get<double>(), 5.0);

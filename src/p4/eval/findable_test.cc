@@ -97,5 +97,59 @@ TEST(Findable, ABallOfTheHallsColourIsNotFindable) {
   EXPECT_EQ(report.frames_findable, 0);
 }
 
+// Two cameras at 60 fps, half the club rig's resolution (640x360: a ball of 4-6 px, the size the
+// finder's cells are made for); the ball in play from frame 20, flying at 3.6 m/s across both
+// cameras' views (6-9 px a frame), held still from frame `still_from` (the top of a toss, say).
+FindableReport StillFrom(int still_from) {
+  Rig rig = TwoCameras();
+  for (Camera& camera : rig.cameras) {
+    camera.width /= 2, camera.height /= 2;
+    camera.fx /= 2, camera.fy /= 2;
+    camera.cx = (camera.cx + 0.5) / 2 - 0.5, camera.cy = (camera.cy + 0.5) / 2 - 0.5;
+  }
+  const Eigen::Vector3d velocity(3.0, 2.0, 0.0);
+  std::vector<TruthRow> truth;
+  for (int k = 0; k < 60; ++k) {
+    TruthRow row;
+    row.t = k / 60.0;
+    row.in_play = k >= 20;
+    row.velocity = k < still_from ? velocity : Eigen::Vector3d::Zero();
+    row.position = Eigen::Vector3d(-1.2, -0.5, 0.3) + std::min(k, still_from) / 60.0 * velocity;
+    truth.push_back(row);
+  }
+  FindableCounter counter(rig, truth, {}, segment::BallColour::Orange(), 0.002);
+  I420Image image(rig.cameras[0].width, rig.cameras[0].height);
+  for (int k = 0; k < 60; ++k) {
+    for (int c = 0; c < 2; ++c) {
+      Draw(rig.cameras[c], truth[k].position, truth[k].in_play, &image);
+      counter.Add(c, FromSeconds(truth[k].t), image.View());
+    }
+  }
+  return counter.Report();
+}
+
+TEST(Findable, TheWholeImageFinderLosesABallThatStandsStill) {
+  // The search that is told where the ball is finds it in all 40 frames either way. The finder,
+  // which knows nothing, finds it in most frames while it flies and in none once it has stood
+  // still for a frame (its "still" test: what was at one place in the last frame is a lamp, a
+  // line or a player's edge), so a ball held still from frame 40 is startable in fewer frames.
+  const FindableReport flying = StillFrom(60), held = StillFrom(40);
+  for (const FindableReport* report : {&flying, &held}) {
+    EXPECT_EQ(report->frames_seen, 40);
+    EXPECT_EQ(report->frames_findable, 40);
+    ASSERT_EQ(report->camera_started.size(), 2u);
+  }
+  for (int c = 0; c < 2; ++c) {
+    // Flying: most of the 40 frames (the finder's own path in the last frame can take the place
+    // where the ball is now: its candidates' middles are cells' centres, 4 px apart).
+    EXPECT_GE(flying.camera_started[c], 24) << "camera " << c;
+    // Held still for 19 frames: at most its first still frame more than the 20 flying ones.
+    EXPECT_LE(held.camera_started[c], 21) << "camera " << c;
+    EXPECT_GE(flying.camera_started[c] - held.camera_started[c], 8) << "camera " << c;
+  }
+  EXPECT_LT(held.frames_startable, flying.frames_startable);
+  EXPECT_LE(held.frames_startable, 20);
+}
+
 }  // namespace
 }  // namespace p4
