@@ -191,7 +191,7 @@ void FlightCheck::DropUnconfirmedStates(int i) {
   if (measured_after && measured_before) return;  // a gap between two sightings: a row
   // No sighting after it: its state and the coast before it from the last sighting, to the
   // run's end. No sighting before it: from the run's start to the next sighting.
-  const int from = measured_before ? before + 1 : std::max(before, 0);
+  const int from = before + 1;  // (held_[before], when there is one, is measured or stateless)
   int to = after;
   if (!measured_after) {
     while (to < n && has_state(to)) ++to;

@@ -141,17 +141,14 @@ TEST(FlightCheck, KeepsTheRowsOfAHit) {
   }
 }
 
-// Row k of `rows` as the filter's prediction only: a state, no measurement.
-void Unmeasured(FrameSetResult* r) { ClearMeasurement(r); }
-
 TEST(FlightCheck, DropsAWrongLastRowThatNothingAfterConfirms) {
   // The track coasts two sets after its last sighting, then its last row jumps 0.7 m to something
   // else of the ball's colour; no row follows. The wrong row goes, and with it every state after
   // the last sighting: no view confirmed that path.
   std::vector<FrameSetResult> rows = Flight();
   rows.resize(32);
-  Unmeasured(&rows[30]);
-  Unmeasured(&rows[31]);
+  ClearMeasurement(&rows[30]);
+  ClearMeasurement(&rows[31]);
   rows.push_back(Row(32, rows[29].measurement->position + Eigen::Vector3d(-0.7, -0.3, 0.0)));
   int dropped = 0;
   const auto out = Check(rows, &dropped);
@@ -167,9 +164,9 @@ TEST(FlightCheck, AWrongRowBetweenSightingsKeepsTheGapsFilled) {
   // Sightings, two predicted sets, a wrong row, one predicted set, sightings: the wrong row is
   // a gap between sightings now, and keeps a state on the flight, as do the predicted sets.
   std::vector<FrameSetResult> rows = Flight();
-  Unmeasured(&rows[18]);
-  Unmeasured(&rows[19]);
-  Unmeasured(&rows[21]);
+  ClearMeasurement(&rows[18]);
+  ClearMeasurement(&rows[19]);
+  ClearMeasurement(&rows[21]);
   rows[20].measurement->position += Eigen::Vector3d(0.0, -0.2, 0.05);
   int dropped = 0;
   const auto out = Check(rows, &dropped);
@@ -186,7 +183,7 @@ TEST(FlightCheck, AWrongFirstRowTakesThePredictionsBeforeTheNextSighting) {
   std::vector<FrameSetResult> rows = Flight();
   for (int k = 25; k < 28; ++k) rows[k].state.reset(), rows[k].measurement.reset();
   rows[28].measurement->position += Eigen::Vector3d(0.5, 0.3, 0.2);
-  Unmeasured(&rows[29]);
+  ClearMeasurement(&rows[29]);
   int dropped = 0;
   const auto out = Check(rows, &dropped);
   EXPECT_EQ(dropped, 1);
