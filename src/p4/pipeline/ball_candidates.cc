@@ -21,6 +21,15 @@ namespace p4 {
 
 namespace {
 
+// The finder's options for the offset search: none of its still candidates, not even those that
+// stand alone (a ball held still tells no time; kept, they crowded webcams' offsets: unsync-webcam
+// tuning 2 found two offsets almost as good and was taken as in step, 7.2 -> 1790 mm).
+segment::StreakFinderOptions StreakFinderForSync() {
+  segment::StreakFinderOptions o;
+  o.isolated_max_share = -1.0;
+  return o;
+}
+
 // The centre of what moved in a region: its box's pixels weighted by how far their luma is from
 // the background's (the region's own centroid snaps to the 2x2 blocks of the motion mask).
 Eigen::Vector2d MovingCentre(const ImageView& image, const segment::BackgroundModel& background,
@@ -112,8 +121,8 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
               foreground.DifferingBlocks(view, background, {}, options.moving_sigmas, false);
           n = finder.Find(view, lut, {}, segment, &regions, &moving);
           if (streaks) {
-            segment::FindStreaks(view, background, options.ball, diameter, {}, {}, &streak_finder,
-                                 &streak_search, &found);
+            segment::FindStreaks(view, background, options.ball, diameter, StreakFinderForSync(),
+                                 {}, &streak_finder, &streak_search, &found);
           }
         }
         background.Update(view);

@@ -21,6 +21,32 @@ constexpr Direction kDirections[] = {{false, 0.0},   {false, kTan22}, {false, 1.
 
 int Step(const Direction& d, int t) { return static_cast<int>(std::lround(d.slope * t)); }
 
+// The share of the blocks whose centres lie `inner` to `outer` px from the candidate's segment
+// that differ from the background by more than its foreground sigmas (0 when there are none).
+double DifferingShareAround(const ImageView& image, const BackgroundModel& bg,
+                            const StreakCandidate& c, double inner, double outer) {
+  const double ux = std::cos(c.angle), uy = std::sin(c.angle), half = 0.5 * c.length_px;
+  const double reach = half + outer;
+  const double k2 = bg.options().foreground_sigmas * bg.options().foreground_sigmas;
+  // Block (bx, by) covers pixels 2bx..2bx+1: its centre is at 2bx + 0.5.
+  const int bx0 = std::max(0, static_cast<int>(std::floor((c.cx - reach) / 2.0))),
+            bx1 = std::min(bg.width() / 2 - 1, static_cast<int>(std::ceil((c.cx + reach) / 2.0))),
+            by0 = std::max(0, static_cast<int>(std::floor((c.cy - reach) / 2.0))),
+            by1 = std::min(bg.height() / 2 - 1, static_cast<int>(std::ceil((c.cy + reach) / 2.0)));
+  int ring = 0, differ = 0;
+  for (int by = by0; by <= by1; ++by) {
+    for (int bx = bx0; bx <= bx1; ++bx) {
+      const double px = 2.0 * bx + 0.5 - c.cx, py = 2.0 * by + 0.5 - c.cy;
+      const double along = std::clamp(px * ux + py * uy, -half, half);
+      const double distance = std::hypot(px - along * ux, py - along * uy);
+      if (distance <= inner || distance > outer) continue;
+      ++ring;
+      differ += bg.BlockDistance2(image, bx, by) > k2;
+    }
+  }
+  return ring > 0 ? static_cast<double>(differ) / ring : 0.0;
+}
+
 }  // namespace
 
 bool StreakFinderOptions::IsValid(std::string* error) const {
@@ -33,6 +59,15 @@ bool StreakFinderOptions::IsValid(std::string* error) const {
       *error =
           "streak finder: cells, half-lengths and side offset of at least one; positive share, "
           "score, candidates (no more than the local bests kept) and shading";
+    }
+    return false;
+  }
+  if (!(isolated_inner_px >= 0.0) || !(isolated_outer_px > isolated_inner_px) ||
+      !(isolated_max_share <= 1.0)) {
+    if (error) {
+      *error =
+          "streak finder: the isolation ring needs 0 <= inner < outer (px) and a share of at "
+          "most 1";
     }
     return false;
   }
@@ -163,7 +198,8 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
   });
   // Every segment apart from the better ones is a local best (`seen`); those at a place where
   // one was in the last frame stay out (a lamp, a line, a player's edge: the ball in play never
-  // leaves two streaks at one place), so the candidates go to what is new.
+  // leaves two streaks at one place), so the candidates go to what is new, but for those the
+  // hall around stands still for (the ball slowing at the top of a toss).
   std::vector<StreakCandidate> seen;
   for (const std::size_t k : order) {
     const Direction& d = kDirections[best_dir_[k]];
@@ -185,7 +221,11 @@ int StreakFinder::Find(const ImageView& image, const BackgroundModel& bg, const 
     const bool still = std::any_of(last_seen_.begin(), last_seen_.end(), [&](const auto& a) {
       return std::hypot(a.cx - c.cx, a.cy - c.cy) <= o.still_px;
     });
-    if (!still) out->push_back(c);
+    if (!still || (o.isolated_max_share >= 0.0 &&
+                   DifferingShareAround(image, bg, c, o.isolated_inner_px, o.isolated_outer_px) <=
+                       o.isolated_max_share)) {
+      out->push_back(c);
+    }
     if (static_cast<int>(out->size()) >= o.max_candidates ||
         static_cast<int>(seen.size()) >= o.max_seen) {
       break;

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "p4/core/table.h"
 #include "p4/geometry/epipolar.h"
@@ -17,6 +18,10 @@ namespace p4::track {
 
 bool FrameSetOptions::IsValid(std::string* error) const {
   if (!segment.IsValid(error) || !tracker.IsValid(error) || !initiator.IsValid(error)) return false;
+  if (!(still_and_moving_max_speed_share >= 0.0 && still_and_moving_max_speed_share <= 1.0)) {
+    if (error) *error = "still_and_moving_max_speed_share must lie in [0, 1]";
+    return false;
+  }
   if (candidates_per_camera < 1 || !(epipolar_px > 0.0) || !(reprojection_px > 0.0)) {
     if (error) *error = "candidates, epipolar and reprojection bounds must be positive";
     return false;
@@ -187,6 +192,29 @@ Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter)
 
 }  // namespace
 
+bool FrameSetTracker::StillAndMoving(const Hypothesis& h,
+                                     const std::vector<std::vector<Detection>>& candidates,
+                                     const Eigen::Vector3d& position) const {
+  const double share = options_.still_and_moving_max_speed_share;
+  if (!(share > 0.0)) return false;
+  bool moving = false, narrow = false;
+  for (const auto& [c, k] : h.members) {
+    if (!candidates[c][k].still) {
+      moving = true;
+      continue;
+    }
+    // The speed across the camera's ray under which the ball stays within static_px over its
+    // frame period: still, the ball flies within asin(that / speed) of the ray.
+    const Camera& camera = rig_.cameras[c];
+    const double depth = (camera.cam_from_world * position).z();
+    const double period = frame_period_s_[c];
+    if (!(depth > 0.0) || !(period > 0.0)) continue;
+    const double still_speed = options_.static_px * depth / (camera.fx * period);
+    narrow = narrow || still_speed <= share * options_.initiator.min_travel_speed;
+  }
+  return moving && narrow;
+}
+
 bool FrameSetTracker::SearchesStreaks(int c) const {
   switch (options_.streaks) {
     case FrameSetOptions::Streaks::kOff:
@@ -240,6 +268,9 @@ void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Det
                        &streak_searches_[c], &found);
   for (const segment::FoundStreak& s : found) {
     out->push_back(StreakDetection(c, s.hit, s.diameter_px));
+    // The finder keeps a streak that stands alone where one was in the last frame (a slow
+    // ball); measured to a quarter pixel, one within static_px of that place is still.
+    out->back().still = SpotCount(c, out->back().pixel) > 1;
   }
 }
 
@@ -642,6 +673,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
     for (const Hypothesis& h : hypotheses) {
       if (h.fragment) continue;  // a new track starts from whole balls
       TrackletPoint p{t, ToMeasurement(h), {}};
+      p.still_and_moving = StillAndMoving(h, candidates, p.measurement.position);
       p.streak = true;
       for (const auto& [c, k] : h.members) {
         p.detections.push_back(offset[c] + k);

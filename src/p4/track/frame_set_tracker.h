@@ -254,6 +254,17 @@ struct FrameSetOptions {
   // from any two measurements that agree (the paper's way).
   bool confirm_tracks = true;
   TrackInitiatorOptions initiator;
+  // A point whose views stood still (Detection::still) in some cameras and moved in others,
+  // where standing still says the ball flies along the still camera's ray, counts for nothing
+  // toward a new track's confirmation by its travel (TrackletPoint::still_and_moving): a ball at
+  // initiator.min_travel_speed stays within static_px over the camera's frame period only if it
+  // flies within asin(this share) of the ray. Such views are most often a still speck (a lamp,
+  // a player's shoulder) paired with something that moves, whose point flies along the speck's
+  // ray as a ball would: webcam tuning 5, 6 and 8 started tracks 0.9-4.8 m off so once the
+  // streak finder kept its still candidates that stand alone. In a fast camera a slow ball
+  // stands still across a wide cone (at 240 fps a toss rising in view), and its stillness says
+  // nothing; a slow ball anywhere still confirms by its toss or its fall. 0: they count.
+  double still_and_moving_max_speed_share = 0.5;
 
   bool IsValid(std::string* error) const;
 };
@@ -411,6 +422,11 @@ class FrameSetTracker {
     double size_misfit = 0.0;  // sum over views of |log(measured / expected diameter)|
     bool fragment = false;     // a view below min_size_ratio (see there)
   };
+  // Whether hypothesis h (at `position`) pairs views that stood still with views that moved,
+  // and stillness in one of its cameras says the ball flies along its ray
+  // (FrameSetOptions::still_and_moving_max_speed_share).
+  bool StillAndMoving(const Hypothesis& h, const std::vector<std::vector<Detection>>& candidates,
+                      const Eigen::Vector3d& position) const;
   // Whether a view of diameter_px may be the ball where expected_px is its expected diameter
   // (max_size_ratio, min_fragment_ratio).
   bool SizeFits(double diameter_px, double expected_px) const;

@@ -166,15 +166,18 @@ bool TrackInitiator::FitsOneFlight(std::span<const TrackletPoint> points) const 
 bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
   const auto& points = tracklet.points;
   const int n = static_cast<int>(points.size());
-  const bool long_enough =
-      n >= options_.confirm_points ||
-      (at_end && n >= options_.min_confirm_points &&
-       std::all_of(points.begin(), points.end(),
-                   [](const TrackletPoint& p) { return p.measurement.cameras >= 2; })) ||
-      (n >= options_.min_confirm_points &&
-       ToSeconds(points.back().t - points.front().t) >= options_.confirm_span_s &&
-       std::all_of(points.begin(), points.end(), [](const TrackletPoint& p) { return p.streak; }));
-  if (!long_enough) return false;
+  // Whether `count` of its points are enough to confirm it.
+  const auto long_enough = [&](int count) {
+    return count >= options_.confirm_points ||
+           (at_end && count >= options_.min_confirm_points &&
+            std::all_of(points.begin(), points.end(),
+                        [](const TrackletPoint& p) { return p.measurement.cameras >= 2; })) ||
+           (count >= options_.min_confirm_points &&
+            ToSeconds(points.back().t - points.front().t) >= options_.confirm_span_s &&
+            std::all_of(points.begin(), points.end(),
+                        [](const TrackletPoint& p) { return p.streak; }));
+  };
+  if (!long_enough(n)) return false;
   // One flight through the newest confirm_points: a stray that joined a still spot, or a hand's
   // turn, fits none (older points may lie before a bounce).
   const auto newest =
@@ -189,8 +192,13 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
   const Eigen::Vector3d travel_sigma =
       (std::sqrt(2.0) * end_noise.sigma.array().max(1e-9)).matrix();
   const bool travelled = Scaled(end_noise.axes, travel_sigma, travel) >= options_.min_travel_sigmas;
+  // Its travel says it flies fast: its points whose views stood still in a camera where that says
+  // it flies along the ray count for nothing (a still speck paired with a moving one).
+  const auto still_and_moving = std::count_if(
+      points.begin(), points.end(), [](const TrackletPoint& p) { return p.still_and_moving; });
   if (travelled && travel.norm() >= options_.min_travel &&
-      travel.norm() >= options_.min_travel_speed * span) {
+      travel.norm() >= options_.min_travel_speed * span &&
+      long_enough(n - static_cast<int>(still_and_moving))) {
     return true;
   }
   // Rising straight up (a serve's toss): min_travel up over fall_span_s or more, however slowly

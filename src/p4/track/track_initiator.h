@@ -98,6 +98,12 @@ struct TrackletPoint {
   bool streak =
       false;          // every view of it is a faint blur streak (no disc: it moved in the exposure)
   int64_t stamp = 0;  // set by the initiator: which of its time-stamps
+  // Some of its views stood still where others moved, in a camera where standing still says a
+  // ball at min_travel_speed flies along its ray (FrameSetTracker): most often a still speck
+  // paired with something that moves, whose point flies along the speck's ray as a ball would.
+  // Such points count for nothing toward a tracklet's confirmation by its travel (a slow ball,
+  // still anywhere, confirms by its toss or its fall as before).
+  bool still_and_moving = false;
 };
 
 struct Tracklet {

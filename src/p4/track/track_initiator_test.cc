@@ -60,6 +60,29 @@ TEST(TrackInitiator, TheFlyingBallIsConfirmedAmongALampAndAFlicker) {
   EXPECT_EQ(confirmed->flight_start, 0u);  // one flight
 }
 
+// The drive above, its points of still and moving views (FrameSetTracker: a still speck's ray)
+// from `flagged_from` on (of the first `flagged` of them): those count for nothing toward its
+// confirmation by travel. Returns the set it is confirmed at, if any of 20.
+std::optional<int> ConfirmedWithStillAndMoving(int flagged_from, int flagged) {
+  std::mt19937 rng(3);
+  TrackInitiator initiator;
+  for (int k = 0; k < 20; ++k) {
+    TrackletPoint p = Point(k, Flight(k, &rng), 1);
+    p.still_and_moving = k >= flagged_from && k < flagged_from + flagged;
+    if (initiator.Push(FromSeconds(k / kRate), std::vector<TrackletPoint>{p})) return k;
+  }
+  return std::nullopt;
+}
+
+TEST(TrackInitiator, PointsOfAStillSpecksRayCountForNothingTowardTravel) {
+  EXPECT_EQ(ConfirmedWithStillAndMoving(0, 0), 3);  // 4 points of 8 m/s at 120 per second
+  // Every point such: not by its travel; by its fall with gravity once it spans fall_span_s
+  // (0.1 s: the 13th point), which a speck's ray paired with a moving thing seldom fits.
+  EXPECT_EQ(ConfirmedWithStillAndMoving(0, 20), 12);
+  // One such point among them: the fifth confirms (4 that count).
+  EXPECT_EQ(ConfirmedWithStillAndMoving(1, 1), 4);
+}
+
 TEST(TrackInitiator, ATrackletThroughAHitKnowsWhereItsFlightStarts) {
   // 240 sets a second: 2 m/s for 9 sets (6.7 cm, no confirmation), then hit back at 7 m/s; the
   // gate takes the ball through the hit (4 cm off the drift's prediction).
