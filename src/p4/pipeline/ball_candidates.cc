@@ -93,6 +93,7 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
           SphereDiameterPx(camera, Eigen::Vector3d(0.0, 0.0, 0.2), table::kBallRadius);
       const bool streaks = fps <= options.streak_max_fps && diameter > 0.0;
       segment::StreakFinder streak_finder;
+      const segment::StreakFinderOptions streak_finder_options = StreakFinderForSync();
       segment::StreakSearch streak_search;
       std::vector<segment::FoundStreak> found;
       // What differs from a background learnt as the frames come (the colour alone finds
@@ -121,7 +122,7 @@ std::vector<std::vector<sync::FrameCandidates>> ReadBallCandidates(
               foreground.DifferingBlocks(view, background, {}, options.moving_sigmas, false);
           n = finder.Find(view, lut, {}, segment, &regions, &moving);
           if (streaks) {
-            segment::FindStreaks(view, background, options.ball, diameter, StreakFinderForSync(),
+            segment::FindStreaks(view, background, options.ball, diameter, streak_finder_options,
                                  {}, &streak_finder, &streak_search, &found);
           }
         }

@@ -3,7 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "p4/core/table.h"
 #include "p4/geometry/epipolar.h"
