@@ -135,7 +135,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   }
   // New tracks are confirmed by the ball's flight: the rows wait for the revisions that brings.
   std::optional<track::ResultHold> hold;
-  if (options.confirm_tracks) hold.emplace(options.initiator.max_span_s);
+  if (options.confirm_tracks) hold.emplace(track::RowHoldSeconds(options));
   std::optional<track::FlightCheck> flight_check;
   if (rig.size() >= 2 && extras.check_flight) {
     track::FlightCheckOptions checking = extras.flight_check;

@@ -21,9 +21,9 @@ FlightModel FlightModelOf(const TrackerOptions& o) {
 
 bool TrackerOptions::IsValid(std::string* error) const {
   if (!kalman.IsValid(error)) return false;
-  if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0) || !(slow_speed >= 0.0) ||
-      !(slow_window_s > 0.0) || !(fall_share >= 0.0) || !(slow_fit_rms > 0.0)) {
-    if (error) *error = "gate, coast time, speeds, the slow window and fall share must be positive";
+  if (!fall.IsValid(error)) return false;
+  if (!(gate_chi2 > 0.0) || !(max_coast_s >= 0.0) || !(max_speed > 0.0)) {
+    if (error) *error = "gate, coast time and speed must be positive";
     return false;
   }
   if (!(bounce_restitution > 0.0 && bounce_restitution <= 1.0)) {
@@ -112,6 +112,7 @@ void BallTracker::Start(TimeNs t, const Measurement& m, const Velocity& velocity
 
 void BallTracker::Began(TimeNs t) {
   tracking_ = true;
+  ended_not_falling_ = false;
   last_t_ = last_update_t_ = last_fix_t_ = t;
   last_position_ = filter_.state().head<3>();
   pending_.reset();
@@ -239,45 +240,18 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
   }
   out.position = filter_.state().head<3>();
   out.velocity = filter_.state().tail<3>();
-  if (used && options_.slow_speed > 0.0 &&
+  if (used && options_.fall.window_s > 0.0 &&
       options_.kalman.noise == KalmanOptions::Noise::kAcceleration) {
-    recent_.emplace_back(t, m->position);
-    while (t - recent_.front().first > FromSeconds(options_.slow_window_s)) recent_.pop_front();
-    if (SlowAndNotFalling()) {
+    recent_.push_back({t, m->position, m->covariance});
+    while (t - recent_.front().t > FromSeconds(options_.fall.window_s)) recent_.pop_front();
+    const std::vector<FallPoint> window(recent_.begin(), recent_.end());
+    if (JudgeFall(window, options_.fall, FlightModelOf(options_)).not_falling) {
       tracking_ = false;
+      ended_not_falling_ = true;
       return std::nullopt;
     }
   }
   return out;
-}
-
-bool BallTracker::SlowAndNotFalling() const {
-  // A window spanning most of slow_window_s, with enough points for a parabola to mean something.
-  if (recent_.size() < 5 ||
-      ToSeconds(recent_.back().first - recent_.front().first) < 0.9 * options_.slow_window_s) {
-    return false;
-  }
-  // Across a table contact the flight is two parabolas: no judgement.
-  for (const auto& [t, p] : recent_) {
-    if (table::OnSurface(p.x(), p.y()) && p.z() < options_.ball_radius + 0.03) return false;
-  }
-  // p(t) = a + b t + c t^2 per axis by least squares, t from the window's middle.
-  const TimeNs mid = recent_.front().first + (recent_.back().first - recent_.front().first) / 2;
-  Eigen::MatrixXd a(recent_.size(), 3);
-  Eigen::MatrixXd p(recent_.size(), 3);
-  for (std::size_t i = 0; i < recent_.size(); ++i) {
-    const double t = ToSeconds(recent_[i].first - mid);
-    a.row(static_cast<Eigen::Index>(i)) << 1.0, t, t * t;
-    p.row(static_cast<Eigen::Index>(i)) = recent_[i].second.transpose();
-  }
-  const Eigen::MatrixXd fit = a.colPivHouseholderQr().solve(p);  // rows: a, b, c
-  // One parabola must explain the window (a bounce or a hit the samples missed: no judgement).
-  const double rms = std::sqrt((a * fit - p).squaredNorm() / static_cast<double>(recent_.size()));
-  if (rms > options_.slow_fit_rms) return false;
-  const double speed = fit.row(1).norm();
-  const double fall = -2.0 * fit(2, 2);  // downward acceleration
-  const double g = options_.kalman.gravity;
-  return speed < options_.slow_speed && std::abs(fall) < options_.fall_share * g;
 }
 
 std::optional<KalmanFilter> BallTracker::PredictedFilter(TimeNs t) const {

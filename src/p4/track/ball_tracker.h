@@ -8,7 +8,7 @@
 // - hit (and any sudden change): a measurement far from the prediction is gated out; the track
 //   restarts from it at once when it is a sound multi-camera measurement, or after a second one
 //   that agrees with it, with the velocity they imply;
-// - a track that moves slowly and does not fall (slow_speed) ends: it is not the ball in play.
+// - a track that does not fall as a ball can (fall_check.h) ends: it is not the ball in play.
 // Time: int64 ns from the caller (the frames' time-stamps), never a constant step. Pure.
 #pragma once
 
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "p4/core/time.h"
+#include "p4/track/fall_check.h"
 #include "p4/track/flight_model.h"
 #include "p4/track/kalman_filter.h"
 #include "p4/track/rts_smoother.h"
@@ -71,17 +72,10 @@ struct TrackerOptions {
   // A measurement the gate refuses restarts the track (at once when sound, else with a second
   // that agrees). Off: it is left out, and the caller starts new tracks (TrackInitiator).
   bool restart_on_refusal = true;
-  // A ball in flight falls: a track whose measurements over the last slow_window_s moved slower
-  // than slow_speed with a vertical acceleration under fall_share of gravity either way (by a
-  // parabola fitted to them within slow_fit_rms; a window across a table contact, or that one
-  // parabola does not fit, is not judged) is not the ball in play (a hand, a shirt, a ball held
-  // or at rest) and ends. A slow ball is near the top of a toss or a lob, where it falls with
-  // gravity (spin and drag are small at that speed). slow_speed 0: never (and never with the
-  // paper's filter).
-  double slow_speed = 2.0;     // m/s
-  double slow_window_s = 0.2;  // s
-  double fall_share = 0.5;     // of gravity
-  double slow_fit_rms = 0.01;  // m
+  // A ball in flight falls (fall_check.h): a track whose measurements over the last
+  // fall.window_s do not fall as a ball can is not the ball in play (a hand, a shirt, a shoe, a
+  // ball held or at rest) and ends. fall.window_s 0: never (and never with the paper's filter).
+  FallCheckOptions fall;
   // The filter's steps kept for a smoother (history()): those of the last history_s. 0: none.
   double history_s = 0.0;
 
@@ -111,11 +105,14 @@ class BallTracker {
   const std::vector<FilterStep>& history() const { return history_; }
 
   bool tracking() const { return tracking_; }
+  // The track ended because it did not fall as a ball can (TrackerOptions::fall): what it followed
+  // was not the ball.
+  bool ended_not_falling() const { return ended_not_falling_; }
+  // The measurements the track took over the last fall.window_s (oldest first).
+  const std::deque<FallPoint>& recent() const { return recent_; }
   int restarts() const { return restarts_; }
 
  private:
-  // Whether the measurements taken over the last slow_window_s move slowly without falling.
-  bool SlowAndNotFalling() const;
   // Predicts the filter to dt ahead, with the table bounce and the net.
   static void PredictWithBounce(KalmanFilter* filter, double dt, const TrackerOptions& options);
   // Predicts the filter to dt ahead, with the table bounce only.
@@ -138,13 +135,13 @@ class BallTracker {
   TrackerOptions options_;
   KalmanFilter filter_;
   bool tracking_ = false;
+  bool ended_not_falling_ = false;
   TimeNs last_t_ = 0;
   TimeNs last_update_t_ = 0;
   TimeNs last_fix_t_ = 0;  // the last measurement that holds the track (one_view_holds_track)
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
   std::optional<std::pair<TimeNs, Measurement>> pending_;    // a measurement the gate refused
-  // The measurements the filter took over the last slow_window_s (time, position).
-  std::deque<std::pair<TimeNs, Eigen::Vector3d>> recent_;
+  std::deque<FallPoint> recent_;  // the measurements the filter took over fall.window_s
   int restarts_ = 0;
   std::vector<FilterStep> history_;  // a few dozen steps: trimmed at the front
 };

@@ -91,6 +91,17 @@ bool FrameSetOptions::IsValid(std::string* error) const {
   return true;
 }
 
+namespace {
+
+// The initiator judges a tracklet's fall as the tracker judges its track's.
+TrackInitiatorOptions WithTrackerFall(TrackInitiatorOptions initiator,
+                                      const TrackerOptions& tracker) {
+  initiator.fall = tracker.fall;
+  return initiator;
+}
+
+}  // namespace
+
 FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& classes,
                                  const FrameSetOptions& options)
     : rig_(rig),
@@ -110,7 +121,7 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
       frame_period_s_(rig.cameras.size(), 0.0),
       ball_coloured_hall_(rig.cameras.size(), 0),
       tracker_options_(options.tracker),
-      initiator_(options.initiator) {
+      initiator_(WithTrackerFall(options.initiator, options.tracker)) {
   // New tracks come from the initiator: a refused measurement must not restart the filter.
   if (options.confirm_tracks) tracker_options_.restart_on_refusal = false;
   if (options.confirm_tracks && rig.size() >= 2) {
@@ -745,6 +756,8 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (!confirming || tracker_.tracking()) {
     result.state = tracker_.Step(t, outside ? std::optional<Measurement>() : result.measurement);
   }
+  // The track ended here because it does not fall as a ball can: its rows were not the ball.
+  const bool not_ball = was_tracking && !tracker_.tracking() && tracker_.ended_not_falling();
   if (confirming) {
     const bool took = result.state && result.state->measured;
     // A confirmed tracklet replaces a track that did not take this time-stamp's measurement, or
@@ -804,6 +817,13 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   for (int i : adopted) result.detections[i].accepted = true;
   PlaceLoneViews(&result);
+  if (confirming) TakeBackRows(t, not_ball, started, &result);
+  // What the track followed goes on in the initiator's tracklets: not confirmed again until
+  // judged falling.
+  if (not_ball) {
+    const std::vector<FallPoint> taken(tracker_.recent().begin(), tracker_.recent().end());
+    initiator_.NotTheBall(taken, options_.initiator.gate);
+  }
   while (!past_.empty() && t - past_.front().t > hold) past_.pop_front();
   past_.push_back(
       {t, result.detections, result.state && result.state->measured && !result.tentative});
@@ -1139,6 +1159,32 @@ BallTracker FrameSetTracker::ReviseUntaken(const Tracklet& tracklet, std::size_t
   ReplayPoints(
       tracklet, tracklet.flight_start, end, &replay, [&](TimeNs t) { return !Taken(t); }, result);
   return replay;
+}
+
+void FrameSetTracker::TakeBackRows(TimeNs t, bool not_ball, bool started, FrameSetResult* result) {
+  const TimeNs hold = FromSeconds(RowHoldSeconds(options_));
+  while (!track_rows_.empty() && t - track_rows_.front() > hold) track_rows_.pop_front();
+  if (not_ball) {
+    // Before the revisions of a flight adopted at t (oldest first, as ResultHold applies them).
+    std::vector<Revision> back;
+    for (const TimeNs row : track_rows_) {
+      Revision r;
+      r.t = row;
+      r.not_ball = true;
+      back.push_back(std::move(r));
+    }
+    result->revisions.insert(result->revisions.begin(), back.begin(), back.end());
+    taken_back_ += static_cast<int>(back.size());
+  }
+  if (not_ball || started) track_rows_.clear();
+  const auto note = [&](TimeNs row) {
+    const auto at = std::lower_bound(track_rows_.begin(), track_rows_.end(), row);
+    if (at == track_rows_.end() || *at != row) track_rows_.insert(at, row);
+  };
+  for (const Revision& r : result->revisions) {
+    if (!r.drop && !r.not_ball && r.state.measured && t - r.t <= hold) note(r.t);
+  }
+  if (result->state && result->state->measured && !result->tentative) note(t);
 }
 
 bool FrameSetTracker::Taken(TimeNs t) const {
@@ -1699,6 +1745,10 @@ void FrameSetTracker::PlaceLoneViews(FrameSetResult* result) {
   });
   std::stable_sort(result->revisions.begin(), result->revisions.end(),
                    [](const Revision& a, const Revision& b) { return a.t < b.t; });
+}
+
+double RowHoldSeconds(const FrameSetOptions& options) {
+  return options.initiator.max_span_s + options.tracker.fall.window_s;
 }
 
 void ClearMeasurement(FrameSetResult* result) {

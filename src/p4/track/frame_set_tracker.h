@@ -325,6 +325,9 @@ struct Revision {
   // measurement, and the track ended (or a new flight replaced it) without another: the state
   // goes (the other fields are not used).
   bool drop = false;
+  // Not the ball: the track that measured it ended because it did not fall as a ball can
+  // (BallTracker::ended_not_falling): the measurement goes with the state.
+  bool not_ball = false;
 };
 
 struct FrameSetResult {
@@ -347,6 +350,11 @@ struct FrameSetResult {
 // measured one (position and velocity as they were).
 void ClearMeasurement(FrameSetResult* result);
 
+// How long the rows must be held (ResultHold) for the tracker's revisions to lose nothing: a
+// tracklet's span (the initiator's max_span_s), and a track that ends as not falling
+// (TrackerOptions::fall) one fall window after its tracklet takes back its rows.
+double RowHoldSeconds(const FrameSetOptions& options);
+
 class FrameSetTracker {
  public:
   // Preconditions: rig and options valid, classes valid and with a "ball" class.
@@ -368,6 +376,7 @@ class FrameSetTracker {
   std::vector<Revision> Finish();
 
   const BallTracker& tracker() const { return tracker_; }
+  int taken_back() const { return taken_back_; }  // rows taken back as not the ball (not_ball)
   // Camera c's background model (empty unless a detector keeps one), as of the last Process.
   const segment::BackgroundModel& background(int c) const { return backgrounds_[c]; }
 
@@ -481,6 +490,10 @@ class FrameSetTracker {
   // Revision::drop for each coasted_ time-stamp the track did not take (a revision may have
   // given it a measured state), before the result's other revisions; coasted_ cleared.
   void DropCoasted(FrameSetResult* result);
+  // Keeps track_rows_ (the track's measured rows within RowHoldSeconds, from this result's
+  // state and revisions; cleared when a flight was adopted at t); where the track ended at t as
+  // not the ball, a Revision::not_ball for each of them first.
+  void TakeBackRows(TimeNs t, bool not_ball, bool started, FrameSetResult* result);
   // The track took a measurement at t (within the hold).
   bool Taken(TimeNs t) const;
   // The revisions' time-stamps within the hold of `now` join taken_ (in order, once).
@@ -597,6 +610,10 @@ class FrameSetTracker {
   std::vector<WaitingView> waiting_;  // lone views whose rows wait for the smoother, oldest first
   std::deque<TimeNs> fixes_;          // the time-stamps of the hold whose two views the track took
   std::deque<TimeNs> taken_;          // the time-stamps of the hold whose measurement it took
+  // The time-stamps within RowHoldSeconds whose rows the track made measured (from its tracklet
+  // on): a track that ended because it did not fall takes them back.
+  std::deque<TimeNs> track_rows_;
+  int taken_back_ = 0;
   // The time-stamps since the track's last measurement whose states are its predictions: dropped
   // (Revision::drop) when the track ends or is replaced without another measurement.
   std::vector<TimeNs> coasted_;

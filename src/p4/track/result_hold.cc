@@ -32,6 +32,12 @@ void ResultHold::Apply(const std::vector<Revision>& revisions) {
       it->state.reset();
       continue;
     }
+    if (r.not_ball) {
+      ClearMeasurement(&*it);
+      it->state.reset();
+      it->tentative = false;
+      continue;
+    }
     it->measurement = r.measurement;
     it->state = r.state;
     it->tentative = false;

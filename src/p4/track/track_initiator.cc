@@ -10,6 +10,7 @@
 namespace p4::track {
 
 bool TrackInitiatorOptions::IsValid(std::string* error) const {
+  if (!fall.IsValid(error)) return false;
   if (confirm_points < 2 || !(min_travel >= 0.0) || !(min_travel_speed >= 0.0) || !(gate > 0.0) ||
       !(toss_max_lean >= 0.0) || !(gate_sigmas >= 0.0) || !(max_gap_s > 0.0) ||
       !(fall_span_s > 0.0) || !(fall_tolerance > 0.0) || fall_points < 4 ||
@@ -163,6 +164,18 @@ bool TrackInitiator::FitsOneFlight(std::span<const TrackletPoint> points) const 
   return WithinOne(Residuals(points));
 }
 
+FallFit TrackInitiator::Fall(std::span<const TrackletPoint> points) const {
+  std::vector<FallPoint> window;
+  window.reserve(points.size());
+  for (const TrackletPoint& p : points) {
+    window.push_back({p.t, p.measurement.position, p.measurement.covariance});
+  }
+  FlightModel model;
+  model.gravity = options_.gravity;
+  model.drag_per_mass = options_.drag_per_mass;
+  return JudgeFall(window, options_.fall, model);
+}
+
 bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
   const auto& points = tracklet.points;
   const int n = static_cast<int>(points.size());
@@ -183,6 +196,10 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
   const auto newest =
       std::span<const TrackletPoint>(points).last(std::min(n, options_.confirm_points));
   if (!FitsOneFlight(newest)) return false;
+  // Its last fall.window_s must not be judged to fall short of a ball's (a shoe moving level),
+  // nor be unjudged when a track that followed it ended for that.
+  const FallFit fall = Fall(points);
+  if (fall.not_falling || (tracklet.not_ball && !fall.judged)) return false;
   const Eigen::Vector3d travel =
       points.back().measurement.position - points.front().measurement.position;
   const double span = ToSeconds(points.back().t - points.front().t);
@@ -326,6 +343,16 @@ std::optional<Tracklet> TrackInitiator::TakeConfirmed(TimeNs t, bool at_end) {
   };
   std::erase_if(tracklets_, shares);
   return confirmed;
+}
+
+void TrackInitiator::NotTheBall(std::span<const FallPoint> taken, double radius) {
+  for (Tracklet& k : tracklets_) {
+    for (const TrackletPoint& p : k.points) {
+      k.not_ball = k.not_ball || std::any_of(taken.begin(), taken.end(), [&](const FallPoint& q) {
+                     return q.t == p.t && (q.position - p.measurement.position).norm() <= radius;
+                   });
+    }
+  }
 }
 
 std::optional<Tracklet> TrackInitiator::Finish() {

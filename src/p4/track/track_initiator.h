@@ -80,8 +80,12 @@ struct TrackInitiatorOptions {
   double max_gap_s = 0.07;
   int max_missed = 2;
   int max_missed_one_view = 1;
-  double max_span_s = 0.25;       // points older than this slide out
-  double max_speed = 45.0;        // m/s; a second point farther than this from the first is not it
+  double max_span_s = 0.25;  // points older than this slide out
+  double max_speed = 45.0;   // m/s; a second point farther than this from the first is not it
+  // A tracklet whose last window_s does not fall as a ball can (fall_check.h: a shoe or a shirt
+  // moving level at 2-4 m/s; 4 points of a 25 fps camera fit a flight, too few to tell) is not
+  // confirmed; FrameSetTracker gives it the tracker's (TrackerOptions::fall).
+  FallCheckOptions fall;
   double gravity = 9.81;          // m/s^2
   double drag_per_mass = 0.1407;  // 1/m, as the filter's
   int max_tracklets = 64;         // the youngest are dropped beyond this
@@ -112,6 +116,9 @@ struct Tracklet {
   // that its newest points fit, as far back as they still fit it. Its gate may have taken the
   // ball through a hit: the points before are the flight the racket ended.
   std::size_t flight_start = 0;
+  // Its points were what a track followed until it ended for not falling as a ball can
+  // (TrackInitiator::NotTheBall): it is confirmed only once its fall is judged a ball's.
+  bool not_ball = false;
 };
 
 class TrackInitiator {
@@ -128,6 +135,11 @@ class TrackInitiator {
   // and would have confirmed but for the points that never came (min_confirm_points, each of two
   // views or more, its travel and one flight as Push asks); it is handed over.
   std::optional<Tracklet> Finish();
+
+  // A track ended for not falling as a ball can, after taking `taken` (its last measurements):
+  // the tracklets with a point within `radius` (m) of one of them at its time follow the same
+  // thing, and are confirmed only once their fall is judged (Tracklet::not_ball).
+  void NotTheBall(std::span<const FallPoint> taken, double radius);
 
   void Clear() { tracklets_.clear(); }
   int size() const { return static_cast<int>(tracklets_.size()); }
@@ -150,6 +162,8 @@ class TrackInitiator {
   // fit_sigmas of their noise; whether they fit it (RMS within 1).
   Eigen::VectorXd Residuals(std::span<const TrackletPoint> points) const;
   bool FitsOneFlight(std::span<const TrackletPoint> points) const;
+  // The fall of the points' last fall.window_s (fall_check.h).
+  FallFit Fall(std::span<const TrackletPoint> points) const;
   // Tracklet::flight_start of a confirmed tracklet.
   std::size_t FlightStart(const Tracklet& tracklet) const;
 
