@@ -35,6 +35,10 @@ std::string TrackRunSummary::Report() const {
   if (off_flight > 0) {
     report += fmt::format("; {} measurement(s) off the ball's flight dropped", off_flight);
   }
+  if (not_falling > 0) {
+    report += fmt::format("; {} row(s) taken back: what they followed did not fall as a ball",
+                          not_falling);
+  }
   if (!score.empty()) {
     report += fmt::format("; {} bounces, {} strokes, {} points: {}", bounces, hits, points, score);
   }
@@ -224,6 +228,7 @@ TrackRunSummary RunTracking(const Rig& rig, const segment::ColorClassSet& classe
   if (hold) {
     for (auto& r : hold->Flush(tracker.Finish())) smooth(std::move(r));
   }
+  summary.not_falling = tracker.taken_back();
   if (smoother) {
     for (const auto& r : smoother->Flush()) record(r);
   }

@@ -60,11 +60,12 @@ struct RunExtras {
 
 struct TrackRunSummary {
   int64_t frame_sets = 0;
-  int64_t measured = 0;    // time-stamps with a 3D measurement
-  int64_t multi_view = 0;  // of which triangulated from >= 2 cameras
-  int64_t off_flight = 0;  // measurements dropped: off the flight on both sides (FlightCheck)
-  int64_t states = 0;      // rows in trajectory.csv
-  int64_t roi_hits = 0;    // camera searches that found the ball in their window
+  int64_t measured = 0;     // time-stamps with a 3D measurement
+  int64_t multi_view = 0;   // of which triangulated from >= 2 cameras
+  int64_t off_flight = 0;   // measurements dropped: off the flight on both sides (FlightCheck)
+  int64_t not_falling = 0;  // rows taken back: their track did not fall as a ball (fall_check.h)
+  int64_t states = 0;       // rows in trajectory.csv
+  int64_t roi_hits = 0;     // camera searches that found the ball in their window
   int64_t roi_searches = 0;
   double video_seconds = 0.0;  // time span of the frame sets
   double wall_seconds = 0.0;
