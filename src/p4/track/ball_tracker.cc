@@ -243,9 +243,11 @@ std::optional<TrackedState> BallTracker::Step(TimeNs t, const std::optional<Meas
   if (used && options_.fall.window_s > 0.0 &&
       options_.kalman.noise == KalmanOptions::Noise::kAcceleration) {
     recent_.push_back({t, m->position, m->covariance});
-    while (t - recent_.front().t > FromSeconds(options_.fall.window_s)) recent_.pop_front();
-    const std::vector<FallPoint> window(recent_.begin(), recent_.end());
-    if (JudgeFall(window, options_.fall, FlightModelOf(options_)).not_falling) {
+    const auto old = std::find_if(recent_.begin(), recent_.end(), [&](const FallPoint& p) {
+      return t - p.t <= FromSeconds(options_.fall.window_s);
+    });
+    recent_.erase(recent_.begin(), old);
+    if (JudgeFall(recent_, options_.fall, FlightModelOf(options_)).not_falling) {
       tracking_ = false;
       ended_not_falling_ = true;
       return std::nullopt;

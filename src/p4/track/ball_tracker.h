@@ -13,7 +13,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -109,7 +108,7 @@ class BallTracker {
   // was not the ball.
   bool ended_not_falling() const { return ended_not_falling_; }
   // The measurements the track took over the last fall.window_s (oldest first).
-  const std::deque<FallPoint>& recent() const { return recent_; }
+  const std::vector<FallPoint>& recent() const { return recent_; }
   int restarts() const { return restarts_; }
 
  private:
@@ -141,7 +140,7 @@ class BallTracker {
   TimeNs last_fix_t_ = 0;  // the last measurement that holds the track (one_view_holds_track)
   Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();  // filtered, at last_update_t_
   std::optional<std::pair<TimeNs, Measurement>> pending_;    // a measurement the gate refused
-  std::deque<FallPoint> recent_;  // the measurements the filter took over fall.window_s
+  std::vector<FallPoint> recent_;  // the measurements the filter took over fall.window_s
   int restarts_ = 0;
   std::vector<FilterStep> history_;  // a few dozen steps: trimmed at the front
 };

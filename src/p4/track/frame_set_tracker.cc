@@ -756,8 +756,11 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (!confirming || tracker_.tracking()) {
     result.state = tracker_.Step(t, outside ? std::optional<Measurement>() : result.measurement);
   }
-  // The track ended here because it does not fall as a ball can: its rows were not the ball.
+  // The track ended here because it does not fall as a ball can: its rows were not the ball, nor
+  // its last points (kept before a flight adopted below replaces the filter).
   const bool not_ball = was_tracking && !tracker_.tracking() && tracker_.ended_not_falling();
+  const std::vector<FallPoint> not_ball_points =
+      not_ball ? tracker_.recent() : std::vector<FallPoint>{};
   if (confirming) {
     const bool took = result.state && result.state->measured;
     // A confirmed tracklet replaces a track that did not take this time-stamp's measurement, or
@@ -820,10 +823,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   if (confirming) TakeBackRows(t, not_ball, started, &result);
   // What the track followed goes on in the initiator's tracklets: not confirmed again until
   // judged falling.
-  if (not_ball) {
-    const std::vector<FallPoint> taken(tracker_.recent().begin(), tracker_.recent().end());
-    initiator_.NotTheBall(taken, options_.initiator.gate);
-  }
+  if (not_ball) initiator_.NotTheBall(not_ball_points, options_.initiator.gate);
   while (!past_.empty() && t - past_.front().t > hold) past_.pop_front();
   past_.push_back(
       {t, result.detections, result.state && result.state->measured && !result.tentative});
