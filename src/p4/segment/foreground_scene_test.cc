@@ -684,6 +684,33 @@ TEST(BallEdge, ChromaTheEncoderSmearedDoesNotMoveTheCentre) {
 // A webcam's frame: 1/30 s of a ball at 12 m/s at 640x360 is a streak of about 60 px in which the
 // ball is under a tenth of each pixel (a few levels): too faint for any per-block threshold, found
 // along the path the filter predicts.
+// The filter's prediction of a ball at p flying at `velocity`: 2 cm off, its motion over a
+// whole frame period of `frame` s. Returns its image path (end minus start), px.
+Eigen::Vector2d PredictedPath(const Scene& scene, const Eigen::Vector3d& p,
+                              const Eigen::Vector3d& velocity, double frame,
+                              Eigen::Vector2d* middle = nullptr) {
+  const Eigen::Vector3d guess = p + Eigen::Vector3d(0.015, -0.01, 0.01);
+  const auto a = scene.camera().Project(guess - 0.5 * frame * velocity);
+  const auto b = scene.camera().Project(guess + 0.5 * frame * velocity);
+  const auto m = scene.camera().Project(guess);
+  EXPECT_TRUE(a && b && m);
+  if (!a || !b || !m) return Eigen::Vector2d::Zero();
+  if (middle) *middle = *m;
+  return *b - *a;
+}
+
+// The streak search along that prediction, for an orange ball of its size at p.
+std::optional<StreakHit> SearchPredicted(Scene& scene, const Eigen::Vector3d& p,
+                                         const Eigen::Vector3d& velocity, double frame,
+                                         const StreakSearchOptions& options, StreakSearch* search) {
+  Eigen::Vector2d m = Eigen::Vector2d::Zero();
+  const Eigen::Vector2d d = PredictedPath(scene, p, velocity, frame, &m);
+  const double diameter =
+      2.0 * table::kBallRadius * scene.camera().fx / (scene.camera().cam_from_world * p).z();
+  return search->Find(scene.frame().View(), scene.background(), BallColour::Orange(), m.x(), m.y(),
+                      d.x(), d.y(), d.norm(), diameter, options);
+}
+
 TEST(StreakSearchScene, AFaintStreakAlongThePredictedPath) {
   Scene scene(sim::ClubLook());
   scene.Learn(30);
@@ -699,17 +726,8 @@ TEST(StreakSearchScene, AFaintStreakAlongThePredictedPath) {
     const auto samples = Exposure(p, velocity, exposure, 64);
     scene.Render(samples, 1.0 + k / 60.0, 999 + k);
     const Silhouette exact = Exact(scene.camera(), samples);
-    // The filter's prediction: the ball 2 cm off, its motion over a whole frame period.
-    const Eigen::Vector3d guess = p + Eigen::Vector3d(0.015, -0.01, 0.01);
-    const auto a = scene.camera().Project(guess - 0.5 * frame * velocity);
-    const auto b = scene.camera().Project(guess + 0.5 * frame * velocity);
-    const auto m = scene.camera().Project(guess);
-    ASSERT_TRUE(a && b && m);
-    const Eigen::Vector2d d = *b - *a;
-    const double diameter =
-        2.0 * table::kBallRadius * scene.camera().fx / (scene.camera().cam_from_world * p).z();
-    const auto hit = search.Find(scene.frame().View(), scene.background(), BallColour::Orange(),
-                                 m->x(), m->y(), d.x(), d.y(), d.norm(), diameter, options);
+    const auto hit = SearchPredicted(scene, p, velocity, frame, options, &search);
+    const Eigen::Vector2d d = PredictedPath(scene, p, velocity, frame);
     std::vector<CoverageRegion> regions;
     finder.Find(scene.frame().View(), scene.background(), BallColour::Orange(), {}, {}, &regions);
     by_blocks += std::any_of(regions.begin(), regions.end(), [&](const CoverageRegion& r) {
@@ -731,6 +749,46 @@ TEST(StreakSearchScene, AFaintStreakAlongThePredictedPath) {
   EXPECT_GE(within, 10);
   ASSERT_GT(found, 0);
   EXPECT_NEAR(sum_length_ratio / found, 1.0, 0.3);  // the exposure's share of the frame
+}
+
+TEST(StreakSearchScene, SkinBrighteningABrownFloorDoesNotShowTheBallsColour) {
+  // Webcam tuning 18: a hand over a brown floor moved as a faint streak would, in two cameras for
+  // three frames, and started a track 6 m off. Its summed difference from the floor (lighter,
+  // little change of chroma) unmixes as no share of the orange ball at any shading; the ball's
+  // own streak does, its chroma smeared as a cheap encoder smears it (the sum is kept).
+  const Eigen::Vector3d velocity(12.0, -1.0, 1.5);
+  const double exposure = 1.0 / 30.0, frame = 1.0 / 25.0;
+  for (const bool skin : {false, true}) {
+    sim::Look look = sim::ClubLook();
+    look.table = {0.49f, 0.35f, 0.2f};  // the floor of that scene
+    if (skin) look.ball = look.skin;
+    Scene scene(look);
+    scene.Learn(30);
+    StreakSearch search;
+    int found = 0;
+    double lowest = 1e9, highest = -1e9;
+    for (int k = 0; k < 12; ++k) {
+      const Eigen::Vector3d p = Place(k);
+      scene.Render(Exposure(p, velocity, exposure, 64), 1.0 + k / 60.0, 999 + k);
+      scene.SmearChroma();
+      const auto hit = SearchPredicted(scene, p, velocity, frame, {}, &search);
+      if (!hit) continue;
+      ++found;
+      lowest = std::min(lowest, hit->colour_residual);
+      highest = std::max(highest, hit->colour_residual);
+    }
+    std::printf("%s streaks found in %d of 12, colour residual %.2f-%.2f\n",
+                skin ? "skin" : "orange", found, lowest, highest);
+    // Measured: the orange streaks found in 12 of 12, residuals 0.01-0.18; the skin's in 5 of 12
+    // (it passes the search's share and ring tests less often), residuals 1.00 (no positive
+    // share of the ball fits).
+    EXPECT_GE(found, skin ? 4 : 11);
+    if (skin) {
+      EXPECT_GE(lowest, 0.9) << skin;  // track::FrameSetOptions::off_colour_residual
+    } else {
+      EXPECT_LT(highest, 0.5);
+    }
+  }
 }
 
 TEST(StreakSearchScene, NothingWhereThereIsNoBall) {

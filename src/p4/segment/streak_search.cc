@@ -90,6 +90,42 @@ StreakSearch::Sums StreakSearch::ShapeSums(int cx, int cy, double clip) const {
   return s;
 }
 
+double StreakSearch::ColourResidual(const ImageView& image, const BackgroundModel& bg,
+                                    const BallColour& ball, const StreakHit& hit,
+                                    double diameter_px, const StreakSearchOptions& o) const {
+  // Every pixel within r + margin of the segment: sums of what is seen and of the background.
+  const double reach = 0.5 * diameter_px + 2.0;
+  const double ux = std::cos(hit.angle), uy = std::sin(hit.angle), half = 0.5 * hit.length_px;
+  const int x0 = std::max(0, static_cast<int>(std::floor(hit.cx - half - reach)));
+  const int x1 = std::min(bg.width() - 1, static_cast<int>(std::ceil(hit.cx + half + reach)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(hit.cy - half - reach)));
+  const int y1 = std::min(bg.height() - 1, static_cast<int>(std::ceil(hit.cy + half + reach)));
+  double so[3] = {0, 0, 0}, sb[3] = {0, 0, 0};
+  int n = 0;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const double dx = x - hit.cx, dy = y - hit.cy;
+      const double along = std::clamp(dx * ux + dy * uy, -half, half);
+      if (std::hypot(dx - along * ux, dy - along * uy) > reach) continue;
+      uint8_t u = 128, v = 128;
+      internal::ChromaAt(image, x, y, &u, &v);
+      const Yuv block = bg.Block(x / 2, y / 2);
+      so[0] += internal::LumaAt(image, x, y), so[1] += u, so[2] += v;
+      sb[0] += bg.Luma(x, y), sb[1] += block.u, sb[2] += block.v;
+      ++n;
+    }
+  }
+  if (n == 0) return 1.0;
+  const Yuv seen{static_cast<float>(so[0] / n), static_cast<float>(so[1] / n),
+                 static_cast<float>(so[2] / n)};
+  const Yuv back{static_cast<float>(sb[0] / n), static_cast<float>(sb[1] / n),
+                 static_cast<float>(sb[2] / n)};
+  UnmixOptions unmix;
+  unmix.chroma_weight = o.chroma_weight;
+  const Unmixed u = Unmix(seen, back, ball, unmix);
+  return u.difference > 1e-6 && u.alpha > 0.0 ? u.residual / u.difference : 1.0;
+}
+
 std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const BackgroundModel& bg,
                                             const BallColour& ball, double mid_x, double mid_y,
                                             double dir_x, double dir_y, double max_length_px,
@@ -256,6 +292,7 @@ std::optional<StreakHit> StreakSearch::Find(const ImageView& image, const Backgr
   const Sums ring = Template(best.cx, best.cy, ux, uy, best.length, r + 1.0, r + 2.5, 1e9);
   hit.ring_share = ring.e > 0.0 ? ring.m / ring.e : 0.0;
   if (hit.ring_share > o.max_ring_ratio * hit.share) return std::nullopt;
+  hit.colour_residual = ColourResidual(image, bg, ball, hit, diameter_px, o);
   return hit;
 }
 

@@ -11,7 +11,11 @@
 // 2x2 block), and compare the best with the same template laid elsewhere in the picture (the
 // picture's own clutter is the null, not a fixed threshold). What passes must also look like a
 // streak: its mean share of the pixels is what a disc of d px smeared over its length gives, and
-// the ring just outside it does not differ (an arm or a shirt fills both).
+// the ring just outside it does not differ (an arm or a shirt fills both). Each hit says too
+// whether the streak shows the ball's colour: its difference from the background summed over it
+// and a margin (4:2:0 and the encoder smear a faint streak's chroma, but keep its sum), unmixed
+// as the ball at any shading (ball_colour.h). Skin lightening a brown floor fits no positive
+// share of an orange ball; the caller judges (track::FrameSetOptions::off_colour_residual).
 //
 // Measured (foreground_scene_test.cc): 50 px streaks of a 5 px ball at 640x360, each pixel under
 // a tenth ball, found in 12 of 12 frames (the block regions: 4), 10 within 0.75 px of the exact
@@ -63,6 +67,9 @@ struct StreakHit {
   double share = 0.0;         // mean share of the ball in the streak's pixels
   double expected_share = 0.0;
   double ring_share = 0.0;
+  // The streak's summed difference from the background unmixed as the ball (ball_colour.h):
+  // the residual over the difference (0: the ball's colour at some shading, 1: none of it).
+  double colour_residual = 0.0;
 };
 
 class StreakSearch {
@@ -88,6 +95,10 @@ class StreakSearch {
   // Each pixel's difference counts up to `clip` times its expected energy (a share of the ball).
   Sums Template(double cx, double cy, double ux, double uy, double length, double inner,
                 double outer, double clip) const;
+  // StreakHit::colour_residual of a hit.
+  double ColourResidual(const ImageView& image, const BackgroundModel& background,
+                        const BallColour& ball, const StreakHit& hit, double diameter_px,
+                        const StreakSearchOptions& options) const;
   double Score(const Sums& s) const { return s.e > 0.0 ? s.m / std::sqrt(s.e) : 0.0; }
   // The same over whole pixels: the template at an integer middle as a list of offsets into the
   // window (BuildShape), for the coarse search and the null.

@@ -17,6 +17,10 @@ namespace p4::track {
 
 bool FrameSetOptions::IsValid(std::string* error) const {
   if (!segment.IsValid(error) || !tracker.IsValid(error) || !initiator.IsValid(error)) return false;
+  if (!(off_colour_residual > 0.0)) {
+    if (error) *error = "off_colour_residual must be positive";
+    return false;
+  }
   if (!(still_and_moving_max_speed_share >= 0.0 && still_and_moving_max_speed_share <= 1.0)) {
     if (error) *error = "still_and_moving_max_speed_share must lie in [0, 1]";
     return false;
@@ -197,6 +201,7 @@ Detection DiscView(int c, const Eigen::Vector2d& pixel, double diameter) {
 Detection StreakDetection(int c, const segment::StreakHit& hit, double diameter) {
   Detection d = DiscView(c, {hit.cx, hit.cy}, diameter);
   d.streak = true;
+  d.colour_residual = hit.colour_residual;
   return d;
 }
 
@@ -685,9 +690,13 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
       TrackletPoint p{t, ToMeasurement(h), {}};
       p.still_and_moving = StillAndMoving(h, candidates, p.measurement.position);
       p.streak = true;
+      p.off_colour = true;
       for (const auto& [c, k] : h.members) {
+        const Detection& d = candidates[c][k];
         p.detections.push_back(offset[c] + k);
-        p.streak = p.streak && candidates[c][k].streak && !candidates[c][k].disc;
+        p.streak = p.streak && d.streak && !d.disc;
+        p.off_colour =
+            p.off_colour && d.streak && d.colour_residual >= options_.off_colour_residual;
       }
       const bool taken = std::any_of(p.detections.begin(), p.detections.end(),
                                      [&](int i) { return taken_detection[i]; });

@@ -1551,6 +1551,16 @@ TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
   EXPECT_NE(why.find("backfill_px"), std::string::npos) << why;
 }
 
+TEST(FrameSetOptions, TheOffColourBoundIsChecked) {
+  std::string why;
+  FrameSetOptions o;
+  o.off_colour_residual = 2.0;  // off is allowed
+  EXPECT_TRUE(o.IsValid(&why)) << why;
+  o.off_colour_residual = 0.0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("off_colour_residual"), std::string::npos) << why;
+}
+
 // One camera's hall must hold the table (its half length 1.37 m, half width 0.7625 m).
 TEST(FrameSetOptions, TheHallMustHoldTheTable) {
   std::string why;

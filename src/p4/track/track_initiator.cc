@@ -190,7 +190,11 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
             std::all_of(points.begin(), points.end(),
                         [](const TrackletPoint& p) { return p.streak; }));
   };
-  if (!long_enough(n)) return false;
+  // Points that do not show the ball's colour (skin or a sleeve brightening the floor) count for
+  // nothing, whichever way the tracklet confirms.
+  const auto off_colour = std::count_if(points.begin(), points.end(),
+                                        [](const TrackletPoint& p) { return p.off_colour; });
+  if (!long_enough(n - static_cast<int>(off_colour))) return false;
   // One flight through the newest confirm_points: a stray that joined a still spot, or a hand's
   // turn, fits none (older points may lie before a bounce).
   const auto newest =
@@ -215,7 +219,7 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
       points.begin(), points.end(), [](const TrackletPoint& p) { return p.still_and_moving; });
   if (travelled && travel.norm() >= options_.min_travel &&
       travel.norm() >= options_.min_travel_speed * span &&
-      long_enough(n - static_cast<int>(still_and_moving))) {
+      long_enough(n - static_cast<int>(still_and_moving + off_colour))) {
     return true;
   }
   // Rising straight up (a serve's toss): min_travel up over fall_span_s or more, however slowly

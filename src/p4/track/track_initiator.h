@@ -108,6 +108,9 @@ struct TrackletPoint {
   // Such points count for nothing toward a tracklet's confirmation by its travel (a slow ball,
   // still anywhere, confirms by its toss or its fall as before).
   bool still_and_moving = false;
+  // Every view of it is a faint streak that does not show the ball's colour
+  // (FrameSetOptions::off_colour_residual): such points count for nothing toward confirmation.
+  bool off_colour = false;
 };
 
 struct Tracklet {

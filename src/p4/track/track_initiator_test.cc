@@ -268,6 +268,28 @@ TEST(TrackInitiator, ThreeStreaksOfAWebcamConfirmAFlightThreePlainPointsDoNot) {
   EXPECT_TRUE(confirmed.has_value());
 }
 
+TEST(TrackInitiator, StreaksThatDoNotShowTheBallsColourCountForNothing) {
+  // Webcam tuning 18: a hand over a brown floor, a faint streak in two cameras for three frames
+  // (FrameSetOptions::off_colour_residual). Three streaks of it confirm nothing, however many
+  // follow; three of the ball do, and one off-colour point among them delays the confirmation
+  // by a frame.
+  const auto confirmed_at = [](int points, int off_from, int off_count) -> std::optional<int> {
+    std::mt19937 rng(11);
+    TrackInitiator initiator;
+    const auto all = WebcamPoints(points, true, &rng);
+    for (int k = 0; k < points; ++k) {
+      TrackletPoint p = all[k];
+      p.off_colour = k >= off_from && k < off_from + off_count;
+      if (initiator.Push(p.t, std::vector<TrackletPoint>{p})) return k;
+    }
+    return std::nullopt;
+  };
+  EXPECT_EQ(confirmed_at(3, 0, 0), 2);
+  EXPECT_FALSE(confirmed_at(3, 0, 3).has_value());
+  EXPECT_FALSE(confirmed_at(6, 0, 6).has_value());  // however long it runs
+  EXPECT_EQ(confirmed_at(6, 0, 1), 3);              // three that count, from the fourth
+}
+
 // A webcam that misses the ball in a frame or two: 80-120 ms between two points at 25 fps,
 // longer than max_gap_s (70 ms); the gap is counted in the sets' own period, so the tracklet
 // waits for max_missed missed sets (and no more) whatever the rate. Points of one view (one
