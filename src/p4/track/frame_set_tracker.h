@@ -267,7 +267,7 @@ struct FrameSetOptions {
   double still_and_moving_max_speed_share = 0.5;
   // A point whose every view is a faint streak whose summed difference from the background
   // does not unmix as the ball's colour at any shading (segment::StreakHit::colour_residual at
-  // least this) counts for nothing toward a new track's confirmation
+  // least this) does not count toward the points a new track's confirmation needs
   // (TrackletPoint::off_colour): skin, a sleeve or a shirt's edge brightening the floor moves
   // as a streak would. A streak's chroma is smeared by 4:2:0 and the encoder, but its sum over
   // the streak and a margin is kept. Measured on webcam tuning 2, 4 and 18 (the whole-image

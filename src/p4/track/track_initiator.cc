@@ -190,8 +190,9 @@ bool TrackInitiator::Confirmed(const Tracklet& tracklet, bool at_end) const {
             std::all_of(points.begin(), points.end(),
                         [](const TrackletPoint& p) { return p.streak; }));
   };
-  // Points that do not show the ball's colour (skin or a sleeve brightening the floor) count for
-  // nothing, whichever way the tracklet confirms.
+  // Points that do not show the ball's colour (skin or a sleeve brightening the floor) do not
+  // count toward confirm_points or min_confirm_points, whichever way the tracklet confirms (they
+  // stay in the fits, and in the fall's fall_points).
   const auto off_colour = std::count_if(points.begin(), points.end(),
                                         [](const TrackletPoint& p) { return p.off_colour; });
   if (!long_enough(n - static_cast<int>(off_colour))) return false;

@@ -109,7 +109,8 @@ struct TrackletPoint {
   // still anywhere, confirms by its toss or its fall as before).
   bool still_and_moving = false;
   // Every view of it is a faint streak that does not show the ball's colour
-  // (FrameSetOptions::off_colour_residual): such points count for nothing toward confirmation.
+  // (FrameSetOptions::off_colour_residual): such points are not counted among the points a
+  // confirmation needs (they stay in its fits).
   bool off_colour = false;
 };
 
