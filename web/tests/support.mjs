@@ -72,25 +72,37 @@ export async function openPage(browser, url, errors) {
 // counts.failed with every request unanswered or answered otherwise than 200 or 204 ("no state
 // yet"; a picture also 404, "none yet"); each state goes to onState, when given.
 export async function pollLikeThePage(url, cameras, stop, counts, onState) {
-  // A request that fails in the network (not by its status) is sent once more, as a browser
-  // resends a GET whose kept-alive connection the server closed as it went out (the server ends a
-  // connection after a few requests or seconds; on a loaded machine the two cross more often).
-  // counts.resent counts those; counts.errors keeps the first few messages.
+  // A request that fails in the network (not by its status: the request or its body) is sent
+  // again, up to twice, as a browser resends a GET whose kept-alive connection the server closed
+  // as it went out (the server ends a connection after a few requests or seconds; on a loaded
+  // machine the two cross more often, and a resend can meet the next close). counts.resent
+  // counts those; counts.errors keeps the first few messages.
   const once = path => fetch(`${url}${path}`, { cache: 'no-store' });
-  const get = (path, ok, read) => once(path).catch(e => {
-    counts.resent = (counts.resent || 0) + 1;
-    return once(path);
-  }).then(async r => {
-    ++counts.requests;
-    if (!ok.includes(r.status)) {
-      ++counts.failed;
-      (counts.errors ||= []).length < 5 && counts.errors.push(`${path}: HTTP ${r.status}`);
-    }
-    await read(r);
-  }).catch(e => {
+  const fail = message => {
     ++counts.failed;
-    (counts.errors ||= []).length < 5 && counts.errors.push(`${path}: ${e.cause?.code || e.message}`);
-  });
+    (counts.errors ||= []).length < 5 && counts.errors.push(message);
+  };
+  const get = async (path, ok, read) => {
+    for (let attempt = 0; ; ++attempt) {
+      let status;
+      try {
+        const r = await once(path);
+        status = r.status;
+        await read(r);
+      } catch (e) {
+        if (attempt < 2) {
+          counts.resent = (counts.resent || 0) + 1;
+          continue;
+        }
+        ++counts.requests;
+        fail(`${path}: ${e.cause?.code || e.message}`);
+        return;
+      }
+      ++counts.requests;
+      if (!ok.includes(status)) fail(`${path}: HTTP ${status}`);
+      return;
+    }
+  };
   for (let k = 0; !stop(); ++k) {
     const requests = [get('api/live/state', [200, 204], async r => {
       if (r.status === 200 && onState) onState(await r.json());

@@ -17,6 +17,10 @@ namespace p4::track {
 
 bool FrameSetOptions::IsValid(std::string* error) const {
   if (!segment.IsValid(error) || !tracker.IsValid(error) || !initiator.IsValid(error)) return false;
+  if (!(bridge_span_s >= 0.0) || !(bridge_max_rms > 0.0)) {
+    if (error) *error = "bridge_span_s must be >= 0 and bridge_max_rms positive";
+    return false;
+  }
   if (!(off_colour_residual > 0.0)) {
     if (error) *error = "off_colour_residual must be positive";
     return false;
@@ -903,6 +907,83 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->new_track = true;
 }
 
+bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
+                             std::span<const SmoothedState> smoothed, std::size_t first,
+                             TimeNs flight_t0, FrameSetResult* result) {
+  const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
+  // The newest set before the flight: it must be a measured row within the hold, and every set
+  // between it and the flight unmeasured and free (no row, no revision, not taken).
+  const PastSet* anchor = nullptr;
+  std::vector<const PastSet*> between;
+  for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
+    if (set->t >= flight_t0) continue;
+    if (result->t - set->t > hold) return false;
+    if (set->measured) {
+      anchor = &*set;
+      break;
+    }
+    if ((Taken(set->t) && !Waiting(set->t)) ||
+        std::any_of(result->revisions.begin(), result->revisions.end(),
+                    [&](const Revision& r) { return r.t == set->t; })) {
+      return false;
+    }
+    between.push_back(&*set);
+  }
+  if (!anchor || between.empty()) return false;
+  // The anchor's point, from the views its row took.
+  std::vector<Observation> o;
+  for (const Detection& d : anchor->detections) {
+    if (d.accepted) o.push_back({d.camera, d.pixel});
+  }
+  if (o.size() < 2) return false;
+  const auto a = TriangulateObservations(rig_.cameras, o, triangulation_);
+  if (!a || a->mean_reprojection_px > options_.reprojection_px) return false;
+  // One flight with a constant acceleration through the anchor and the new flight's first
+  // bridge_span_s (its smoothed states): x(t) = A + v tau + a tau^2 / 2, tau = t - t_anchor.
+  std::vector<std::pair<double, Eigen::Vector3d>> points;
+  for (std::size_t i = first; i < steps.size(); ++i) {
+    if (ToSeconds(steps[i].t - steps[first].t) > options_.bridge_span_s) break;
+    points.emplace_back(ToSeconds(steps[i].t - anchor->t), smoothed[i].state.head<3>());
+  }
+  if (points.size() < 3) return false;
+  Eigen::MatrixXd m(points.size(), 2);
+  Eigen::MatrixXd rhs(points.size(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double tau = points[i].first;
+    m.row(static_cast<Eigen::Index>(i)) << tau, 0.5 * tau * tau;
+    rhs.row(static_cast<Eigen::Index>(i)) = (points[i].second - a->point).transpose();
+  }
+  const Eigen::MatrixXd va = m.colPivHouseholderQr().solve(rhs);  // rows: v, a
+  const Eigen::Vector3d v0 = va.row(0).transpose(), acc = va.row(1).transpose();
+  double rms = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double tau = points[i].first;
+    rms += (a->point + v0 * tau + 0.5 * acc * tau * tau - points[i].second).squaredNorm();
+  }
+  rms = std::sqrt(rms / static_cast<double>(points.size()));
+  // A ball's acceleration: gravity, drag and the Magnus force of at most max_spin.
+  const FallCheckOptions& f = tracker_options_.fall;
+  const double speed = (v0 + 0.5 * acc * points.front().first).norm();
+  const double most = tracker_options_.kalman.drag_per_mass * speed * speed +
+                      f.magnus_per_mass * f.max_spin * speed;
+  const Eigen::Vector3d g(0.0, 0.0, -tracker_options_.kalman.gravity);
+  if (rms > options_.bridge_max_rms || (acc - g).norm() > most + 2.0) return false;
+  // Each set between: its views within backfill_px of the bridge there; one view placed on its
+  // ray where the bridge crosses it.
+  for (const PastSet* set : between) {
+    const double tau = ToSeconds(set->t - anchor->t);
+    Vector6d x;
+    x.head<3>() = a->point + v0 * tau + 0.5 * acc * tau * tau;
+    x.tail<3>() = v0 + acc * tau;
+    const double sigma = std::max(rms, 0.003);
+    Revision r;
+    if (RowOnFlight(*set, x, sigma * sigma * Eigen::Matrix3d::Identity(), &r)) {
+      PushRevision(std::move(r), result);
+    }
+  }
+  return true;
+}
+
 void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_t0,
                                FrameSetResult* result) {
   if (!(options_.backfill_px > 0.0) || steps.empty() || past_.empty()) return;
@@ -921,7 +1002,11 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   // The track's first step (its flight's first point), smoothed with the steps after it.
   std::size_t first = steps.size() - 1;
   while (first > 0 && !steps[first].start) --first;
-  const SmoothedState s0 = SmoothSteps(steps)[first];
+  const std::vector<SmoothedState> smoothed_steps = SmoothSteps(steps);
+  const SmoothedState s0 = smoothed_steps[first];
+  if (options_.bridge_span_s > 0.0 && Bridge(steps, smoothed_steps, first, flight_t0, result)) {
+    return;
+  }
   const KalmanOptions& kalman = tracker_options_.kalman;
   // The flight carried back set by set (x, p: a backward filter). Each set of two views or more
   // that it takes corrects it, so a set further back is judged by the sets already taken, not
@@ -1068,22 +1153,24 @@ void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_
     Matrix6d p = smoothed[k].covariance;
     CarryFlight(tracker_options_.kalman, ToSeconds(set.t - steps[k].t), &x, &p);
     Revision r;
-    r.t = set.t;
-    std::vector<Observation> observations;
-    Hypothesis views;
-    ViewsOnFlight(set, x.head<3>(), &r, &observations, &views);
-    if (observations.empty()) continue;
-    if (observations.size() >= 2) {
-      const auto estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
-      if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) continue;
-      views.estimate = *estimate;
-      r.measurement = ToMeasurement(views);
-      r.state.velocity = x.tail<3>();
-    } else if (!PlaceOnRay(x, p.topLeftCorner<3, 3>(), &r)) {
-      continue;
-    }
-    PushRevision(std::move(r), result);
+    if (RowOnFlight(set, x, p.topLeftCorner<3, 3>(), &r)) PushRevision(std::move(r), result);
   }
+}
+
+bool FrameSetTracker::RowOnFlight(const PastSet& set, const Vector6d& flight,
+                                  const Eigen::Matrix3d& covariance, Revision* r) const {
+  r->t = set.t;
+  std::vector<Observation> observations;
+  Hypothesis views;
+  ViewsOnFlight(set, flight.head<3>(), r, &observations, &views);
+  if (observations.empty()) return false;
+  if (observations.size() == 1) return PlaceOnRay(flight, covariance, r);
+  const auto estimate = TriangulateObservations(rig_.cameras, observations, triangulation_);
+  if (!estimate || estimate->mean_reprojection_px > options_.reprojection_px) return false;
+  views.estimate = *estimate;
+  r->measurement = ToMeasurement(views);
+  r->state.velocity = flight.tail<3>();
+  return true;
 }
 
 void FrameSetTracker::ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,

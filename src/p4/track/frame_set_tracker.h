@@ -243,6 +243,18 @@ struct FrameSetOptions {
   // Rigs of 2+ cameras.
   double backfill_px = 3.0;
   int backfill_max_missed = 2;
+  // Before that, the flight across a contact: where the newest set before the flight is a
+  // measured row and every set between is free, one flight of constant acceleration through that
+  // row's point and the new flight's smoothed states over its first bridge_span_s, fitting them
+  // to bridge_max_rms with an acceleration a ball can have (gravity, drag, and the Magnus force
+  // of FallCheckOptions::max_spin, + 2 m/s^2), is the ball between: each set's views within
+  // backfill_px of it are rows (one view placed where the bridge crosses its ray), and the
+  // search above is not made. The flight carried back alone has no spin: after a hit it drifts
+  // 5-9 px within 0.1 s (white tuning 6), past backfill_px, and a single view placed at its
+  // depth is 30-82 mm off; the row before the contact ties the bridge at its other end (the
+  // first row after a hit, or one within the drift of it). 0 s: off.
+  double bridge_span_s = 0.1;
+  double bridge_max_rms = 0.005;  // m
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
   int threads = 1;
@@ -645,6 +657,18 @@ class FrameSetTracker {
   // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
   // r->accepted, its centre moved back from shade (ShadedCentre at the point's width) joins
   // *observations and its (camera, index) views->members.
+  // The set's views on `flight` (ViewsOnFlight) as a row of r: two or more, their point; one,
+  // placed on its ray where the flight crosses it, if `covariance` (of the flight's position)
+  // knows that depth (PlaceOnRay). False for none, or views that do not meet.
+  bool RowOnFlight(const PastSet& set, const Vector6d& flight, const Eigen::Matrix3d& covariance,
+                   Revision* r) const;
+  // After a hit one camera may lose the ball for a few sets (against a shirt of its colour):
+  // where the measured row before the new flight lies on it (a flight of constant acceleration
+  // within a ball's through that row and the flight's first 0.1 s), the sets between take their
+  // views on that bridge, a single view placed where the bridge crosses its ray. False (nothing
+  // done) where it does not hold.
+  bool Bridge(std::span<const FilterStep> steps, std::span<const SmoothedState> smoothed,
+              std::size_t first, TimeNs flight_t0, FrameSetResult* result);
   void ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,
                      std::vector<Observation>* observations, Hypothesis* views) const;
   // r as a measured row of its time-stamp (its state from its measurement); a lone view waiting
