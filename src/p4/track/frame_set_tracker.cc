@@ -1003,7 +1003,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   std::size_t first = steps.size() - 1;
   while (first > 0 && !steps[first].start) --first;
   const std::vector<SmoothedState> smoothed_steps = SmoothSteps(steps);
-  const SmoothedState s0 = smoothed_steps[first];
+  const SmoothedState& s0 = smoothed_steps[first];
   if (options_.bridge_span_s > 0.0 && Bridge(steps, smoothed_steps, first, flight_t0, result)) {
     return;
   }
