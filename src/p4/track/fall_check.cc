@@ -34,9 +34,12 @@ bool FallCheckOptions::IsValid(std::string* error) const {
   return true;
 }
 
+double MostAirAcceleration(double speed, const FallCheckOptions& options, double drag_per_mass) {
+  return options.magnus_per_mass * options.max_spin * speed + drag_per_mass * speed * speed;
+}
+
 double LeastFall(double speed, const FallCheckOptions& options, const FlightModel& model) {
-  return model.gravity - options.magnus_per_mass * options.max_spin * speed -
-         model.drag_per_mass * speed * speed;
+  return model.gravity - MostAirAcceleration(speed, options, model.drag_per_mass);
 }
 
 FallFit JudgeFall(std::span<const FallPoint> points, const FallCheckOptions& options,

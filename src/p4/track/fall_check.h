@@ -61,6 +61,10 @@ struct FallFit {
   double fall_sigma = 0.0;   // m/s^2
 };
 
+// The most acceleration (m/s^2) the air gives a ball in flight at `speed` (m/s), any direction:
+// drag (drag_per_mass v^2) and the Magnus force of max_spin (magnus_per_mass max_spin v).
+double MostAirAcceleration(double speed, const FallCheckOptions& options, double drag_per_mass);
+
 // The least downward acceleration (m/s^2) of a ball in flight at `speed` (m/s): gravity less the
 // most that drag and the Magnus force of max_spin lift it (negative above 5 m/s).
 double LeastFall(double speed, const FallCheckOptions& options, const FlightModel& model);

@@ -922,11 +922,7 @@ bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
       anchor = &*set;
       break;
     }
-    if ((Taken(set->t) && !Waiting(set->t)) ||
-        std::any_of(result->revisions.begin(), result->revisions.end(),
-                    [&](const Revision& r) { return r.t == set->t; })) {
-      return false;
-    }
+    if (RowMadeSince(*set, *result)) return false;
     between.push_back(&*set);
   }
   if (!anchor || between.empty()) return false;
@@ -955,29 +951,28 @@ bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
   }
   const Eigen::MatrixXd va = m.colPivHouseholderQr().solve(rhs);  // rows: v, a
   const Eigen::Vector3d v0 = va.row(0).transpose(), acc = va.row(1).transpose();
+  // The bridge's position and velocity tau after the anchor.
+  const auto on_bridge = [&](double tau) {
+    Vector6d x;
+    x << a->point + v0 * tau + 0.5 * acc * tau * tau, v0 + acc * tau;
+    return x;
+  };
   double rms = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double tau = points[i].first;
-    rms += (a->point + v0 * tau + 0.5 * acc * tau * tau - points[i].second).squaredNorm();
-  }
+  for (const auto& [tau, p] : points) rms += (on_bridge(tau).head<3>() - p).squaredNorm();
   rms = std::sqrt(rms / static_cast<double>(points.size()));
-  // A ball's acceleration: gravity, drag and the Magnus force of at most max_spin.
-  const FallCheckOptions& f = tracker_options_.fall;
-  const double speed = (v0 + 0.5 * acc * points.front().first).norm();
-  const double most = tracker_options_.kalman.drag_per_mass * speed * speed +
-                      f.magnus_per_mass * f.max_spin * speed;
+  // A ball's acceleration: gravity, and what the air gives it (drag, Magnus of max_spin).
+  const double speed = on_bridge(0.5 * points.front().first).tail<3>().norm();
+  const double most =
+      MostAirAcceleration(speed, tracker_options_.fall, tracker_options_.kalman.drag_per_mass);
   const Eigen::Vector3d g(0.0, 0.0, -tracker_options_.kalman.gravity);
   if (rms > options_.bridge_max_rms || (acc - g).norm() > most + 2.0) return false;
   // Each set between: its views within backfill_px of the bridge there; one view placed on its
   // ray where the bridge crosses it.
+  const double sigma = std::max(rms, 0.003);
   for (const PastSet* set : between) {
-    const double tau = ToSeconds(set->t - anchor->t);
-    Vector6d x;
-    x.head<3>() = a->point + v0 * tau + 0.5 * acc * tau * tau;
-    x.tail<3>() = v0 + acc * tau;
-    const double sigma = std::max(rms, 0.003);
     Revision r;
-    if (RowOnFlight(*set, x, sigma * sigma * Eigen::Matrix3d::Identity(), &r)) {
+    if (RowOnFlight(*set, on_bridge(ToSeconds(set->t - anchor->t)),
+                    sigma * sigma * Eigen::Matrix3d::Identity(), &r)) {
       PushRevision(std::move(r), result);
     }
   }
@@ -992,9 +987,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   // the hit, an earlier back-fill): the flight before. Not a lone view still waiting for its
   // depth (PlaceLoneViews): the coasting track's guess after a hit, which the flight replaces.
   const auto ends_search = [&](const PastSet& set) {
-    return result->t - set.t > hold || set.measured || (Taken(set.t) && !Waiting(set.t)) ||
-           std::any_of(result->revisions.begin(), result->revisions.end(),
-                       [&](const Revision& r) { return r.t == set.t; });
+    return result->t - set.t > hold || set.measured || RowMadeSince(set, *result);
   };
   const auto before = std::find_if(past_.rbegin(), past_.rend(),
                                    [&](const PastSet& set) { return set.t < flight_t0; });
@@ -1281,6 +1274,12 @@ void FrameSetTracker::TakeBackRows(TimeNs t, bool not_ball, bool started, FrameS
     if (!r.drop && !r.not_ball && r.state.measured && t - r.t <= hold) note(r.t);
   }
   if (result->state && result->state->measured && !result->tentative) note(t);
+}
+
+bool FrameSetTracker::RowMadeSince(const PastSet& set, const FrameSetResult& result) const {
+  return (Taken(set.t) && !Waiting(set.t)) ||
+         std::any_of(result.revisions.begin(), result.revisions.end(),
+                     [&](const Revision& r) { return r.t == set.t; });
 }
 
 bool FrameSetTracker::Taken(TimeNs t) const {

@@ -657,6 +657,10 @@ class FrameSetTracker {
   // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
   // r->accepted, its centre moved back from shade (ShadedCentre at the point's width) joins
   // *observations and its (camera, index) views->members.
+  // Whether the set has a row made after its own time-stamp: one the track took since (a lone
+  // view placed, an earlier back-fill: Taken), not a lone view still waiting for its depth
+  // (PlaceLoneViews), or a revision in `result` (this time-stamp's).
+  bool RowMadeSince(const PastSet& set, const FrameSetResult& result) const;
   // The set's views on `flight` (ViewsOnFlight) as a row of r: two or more, their point; one,
   // placed on its ray where the flight crosses it, if `covariance` (of the flight's position)
   // knows that depth (PlaceOnRay). False for none, or views that do not meet.

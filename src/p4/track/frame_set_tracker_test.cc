@@ -1590,37 +1590,34 @@ TEST(FrameSetOptions, LoneViewBoundsAreChecked) {
   EXPECT_FALSE(o.IsValid(&why));
 }
 
-TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
+// Options with `field` set to `off` are valid, with `bad` refused by a message naming it.
+void ExpectOffAllowedAndBadNamed(double FrameSetOptions::*field, double off, double bad,
+                                 const std::string& name) {
   std::string why;
   FrameSetOptions o;
-  o.backfill_px = 0.0;  // off is allowed
-  EXPECT_TRUE(o.IsValid(&why)) << why;
-  o.backfill_px = -1.0;
-  EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("backfill_px"), std::string::npos) << why;
+  o.*field = off;
+  EXPECT_TRUE(o.IsValid(&why)) << name << ": " << why;
+  o.*field = bad;
+  EXPECT_FALSE(o.IsValid(&why)) << name;
+  EXPECT_NE(why.find(name), std::string::npos) << why;
+}
+
+TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
+  ExpectOffAllowedAndBadNamed(&FrameSetOptions::backfill_px, 0.0, -1.0, "backfill_px");
 }
 
 TEST(FrameSetOptions, TheBridgeBoundsAreChecked) {
+  ExpectOffAllowedAndBadNamed(&FrameSetOptions::bridge_span_s, 0.0, -0.1, "bridge_span_s");
   std::string why;
   FrameSetOptions o;
-  o.bridge_span_s = 0.0;  // off is allowed
-  EXPECT_TRUE(o.IsValid(&why)) << why;
-  o.bridge_span_s = -0.1;
-  EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("bridge_span_s"), std::string::npos) << why;
-  o = {};
   o.bridge_max_rms = 0.0;
   EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("bridge_max_rms"), std::string::npos) << why;
 }
 
 TEST(FrameSetOptions, TheOffColourBoundIsChecked) {
-  std::string why;
-  FrameSetOptions o;
-  o.off_colour_residual = 2.0;  // off is allowed
-  EXPECT_TRUE(o.IsValid(&why)) << why;
-  o.off_colour_residual = 0.0;
-  EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("off_colour_residual"), std::string::npos) << why;
+  ExpectOffAllowedAndBadNamed(&FrameSetOptions::off_colour_residual, 2.0, 0.0,
+                              "off_colour_residual");
 }
 
 // One camera's hall must hold the table (its half length 1.37 m, half width 0.7625 m).
