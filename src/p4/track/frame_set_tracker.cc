@@ -47,6 +47,10 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
     return false;
   }
+  if (!(past_end_min_coast_s >= 0.0)) {
+    if (error) *error = "past_end_min_coast_s must be >= 0";
+    return false;
+  }
   if (roi_min_px < 8 || roi_max_px < roi_min_px || roi_max_missed < 0) {
     if (error) *error = "ROI: need sizes 8 <= min <= max and roi_max_missed >= 0";
     return false;
@@ -757,14 +761,16 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   }
   const TimeNs t2 = clock_ ? clock_() : 0;
   // With confirmation a track starts only from the initiator (below), never from this step.
-  // A coasting track of 2+ cameras takes nothing from outside its windows (Detection::outside):
-  // what the whole image shows goes to the initiator, which replaces the track once it confirms
+  // A coasting track of 2+ cameras takes nothing from outside its windows (Detection::outside),
+  // nor anything while it coasts past the table's end (CoastsPastEnd: the ball may have been
+  // hit): what the images show goes to the initiator, which replaces the track once it confirms
   // a flight. (One camera's views are judged again by the smoother, and its initiator confirms
   // late: there the track takes them; docs/DECISIONS.md.)
-  const bool outside =
-      n > 1 && std::any_of(used.begin(), used.end(), [&](const std::pair<int, int>& v) {
-        return candidates[v.first][v.second].outside;
-      });
+  const bool outside = n > 1 && (std::any_of(used.begin(), used.end(),
+                                             [&](const std::pair<int, int>& v) {
+                                               return candidates[v.first][v.second].outside;
+                                             }) ||
+                                 CoastsPastEnd(t, predicted));
   const bool was_tracking = tracker_.tracking();
   if (!confirming || tracker_.tracking()) {
     result.state = tracker_.Step(t, outside ? std::optional<Measurement>() : result.measurement);
@@ -1372,6 +1378,20 @@ Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expe
   segment::UnshadeCentre(view.diameter_px, faint.data(), expected_px, options_.shade, &centre.x(),
                          &centre.y());
   return centre;
+}
+
+bool FrameSetTracker::CoastsPastEnd(TimeNs t,
+                                    const std::optional<Eigen::Vector3d>& predicted) const {
+  if (!options_.past_end_takes_nothing || !predicted || !last_taken_t_) return false;
+  // The slowest camera's frame: a set missed is one of its frames gone by.
+  const double period = *std::max_element(frame_period_s_.begin(), frame_period_s_.end());
+  const double coasted = ToSeconds(t - *last_taken_t_);
+  if (!(period > 0.0) || coasted <= 1.5 * period || coasted < options_.past_end_min_coast_s) {
+    return false;
+  }
+  const auto velocity = tracker_.PredictVelocity(t);
+  return velocity && std::abs(predicted->x()) > table::kHalfLength &&
+         predicted->x() * velocity->x() > 0.0;
 }
 
 bool FrameSetTracker::SizeFits(double diameter_px, double expected_px) const {

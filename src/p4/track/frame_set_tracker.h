@@ -98,6 +98,17 @@ struct FrameSetOptions {
   // frames; after that the whole image (a coasting filter's path runs on after a hit, into the
   // player's arm or onto a ball lying on the floor, which the window would take for the ball).
   int roi_max_missed = 1;
+  // A track of 2+ cameras that has missed a set and past_end_min_coast_s while its flight carries
+  // the ball past the table's end, away from the net, takes nothing: there the ball meets the
+  // racket, and the coasting flight no longer says where it is, while the hitter's arm, racket
+  // or shirt of the ball's colour lie on its path (phone tuning 3, 30 fps: after a hit the track
+  // took pieces of the hitter's shirt for 0.37 s, 1-4 m off). A hit in 25 ms sends a ball of
+  // 5 m/s 25 cm from the coasting flight: a view near it is then no sign of the ball; a set or
+  // two missed at 240 fps is (white tuning 1 lost 10 sets before a hit with no time bound).
+  // What the images show goes to the initiator, which replaces the track once it confirms a
+  // flight: the return, or the ball flying on past a miss.
+  bool past_end_takes_nothing = true;
+  double past_end_min_coast_s = 0.025;
   bool single_camera_fallback = true;
   double pixel_sigma = 0.5;  // centroid noise, px (measurement covariances, views' weights)
   // The views of a triangulated point count by their centres' noise (TriangulationOptions):
@@ -461,6 +472,9 @@ class FrameSetTracker {
   // (FrameSetOptions::still_and_moving_max_speed_share).
   bool StillAndMoving(const Hypothesis& h, const std::vector<std::vector<Detection>>& candidates,
                       const Eigen::Vector3d& position) const;
+  // Whether the track, having missed a set, carries the ball past the table's end away from the
+  // net at t (past_end_takes_nothing): then it takes no measurement.
+  bool CoastsPastEnd(TimeNs t, const std::optional<Eigen::Vector3d>& predicted) const;
   // Whether a view of diameter_px may be the ball where expected_px is its expected diameter
   // (max_size_ratio, min_fragment_ratio).
   bool SizeFits(double diameter_px, double expected_px) const;
