@@ -666,11 +666,6 @@ class FrameSetTracker {
   std::deque<PastSet> past_;
   std::function<TimeNs()> clock_;
 
-  // Per camera, the set's view nearest the flight's point within backfill_px; not still or cut
-  // views, nor fragments (a view below min_size_ratio of the ball's size there: a highlight, the
-  // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
-  // r->accepted, its centre moved back from shade (ShadedCentre at the point's width) joins
-  // *observations and its (camera, index) views->members.
   // Whether the set has a row made after its own time-stamp: one the track took since (a lone
   // view placed, an earlier back-fill: Taken), not a lone view still waiting for its depth
   // (PlaceLoneViews), or a revision in `result` (this time-stamp's).
@@ -687,6 +682,11 @@ class FrameSetTracker {
   // done) where it does not hold.
   bool Bridge(std::span<const FilterStep> steps, std::span<const SmoothedState> smoothed,
               std::size_t first, TimeNs flight_t0, FrameSetResult* result);
+  // Per camera, the set's view nearest the flight's point within backfill_px; not still or cut
+  // views, nor fragments (a view below min_size_ratio of the ball's size there: a highlight, the
+  // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
+  // r->accepted, its centre moved back from shade (ShadedCentre at the point's width) joins
+  // *observations and its (camera, index) views->members.
   void ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,
                      std::vector<Observation>* observations, Hypothesis* views) const;
   // r as a measured row of its time-stamp (its state from its measurement); a lone view waiting
