@@ -166,7 +166,10 @@ std::optional<MarkerPoseResult> SolveMarkerPose(const std::optional<Camera>& int
              std::to_string(min_markers) + " needed";
     if (!result.unknown.empty()) {
       *error += " (found ids not in the layout:";
-      for (int id : result.unknown) *error += " " + std::to_string(id);
+      for (int id : result.unknown) {
+        *error += ' ';
+        *error += std::to_string(id);
+      }
       *error += ")";
     }
     return std::nullopt;
