@@ -168,7 +168,8 @@ std::vector<std::string> SuiteScene::SimulateArgs() const {
     if (values.empty()) return;
     std::string joined;
     for (const auto& v : values) {
-      joined += (joined.empty() ? "" : ",") + fmt::format(fmt::runtime(format), v);
+      if (!joined.empty()) joined += ',';
+      joined += fmt::format(fmt::runtime(format), v);
     }
     a.insert(a.end(), {flag, joined});
   };
