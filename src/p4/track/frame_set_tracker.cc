@@ -72,6 +72,13 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "still_max_motion_px must be at least 0";
     return false;
   }
+  if (!(blur_size_share >= 1.0) || !(blur_motion_share >= 1.0) || !(blur_margin_px >= 0.0)) {
+    if (error) {
+      *error =
+          "blur_size_share and blur_motion_share must be at least 1, blur_margin_px at least 0";
+    }
+    return false;
+  }
   if (!(streak_min_frame_s > 0.0)) {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
@@ -552,6 +559,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     Detection d{c, {r.cx, r.cy}, r.minor_diameter + options_.diameter_bias_px, r.area, false};
     d.still = still;
     d.cut = r.touches_border;
+    d.length_px = r.major_diameter;
     if (by_coverage(k)) {
       d.diameter_px = r.diameter;  // the coverage sum: the disc's area, blur or not
       d.by_coverage = true;
@@ -731,17 +739,17 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // continues a track (a lone view of an orange speck must not start one), at the predicted depth.
   std::optional<WaitingView> waits;
   if (!result.measurement && options_.single_camera_fallback) {
-    std::vector<char> moving(n, 0);
+    std::vector<double> motion_px;
     if (predicted) {
       if (const auto velocity = tracker_.PredictVelocity(t)) {
-        moving = PredictedMoving(*predicted, *velocity);
+        motion_px = PredictedMotion(*predicted, *velocity);
       }
     }
     if (n == 1) {
       result.measurement =
-          SingleView(candidates[0], placed, predicted, predicted_covariance, moving, &used);
+          SingleView(candidates[0], placed, predicted, predicted_covariance, motion_px, &used);
     } else if (predicted) {
-      if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance, moving)) {
+      if (auto lone = NearestLoneView(candidates, *predicted, predicted_covariance, motion_px)) {
         // A lone view whose depth the filter knows is a row at once; with the rows held
         // (confirming), every lone view waits for the fixes after it (PlaceLoneViews): from
         // the past alone its depth is an extrapolation.
@@ -1672,13 +1680,16 @@ Measurement FrameSetTracker::ToMeasurement(const Hypothesis& h) const {
 std::optional<Measurement> FrameSetTracker::SingleView(
     const std::vector<Detection>& views, const std::vector<std::optional<Measurement>>& placed,
     const std::optional<Eigen::Vector3d>& predicted, const Eigen::Matrix3d& predicted_covariance,
-    std::span<const char> moving, std::vector<std::pair<int, int>>* used) const {
+    std::span<const double> motion_px, std::vector<std::pair<int, int>>* used) const {
   std::optional<Measurement> best;
   double best_score = 0.0;
   int best_k = 0;
+  const double expected = predicted ? ExpectedDiameterPx(rig_.cameras[0], *predicted) : 0.0;
+  const std::optional<double> motion =
+      motion_px.empty() ? std::nullopt : std::optional<double>(motion_px[0]);
   for (int k = 0; k < static_cast<int>(views.size()); ++k) {
     const std::optional<Measurement>& m = placed[k];
-    if (!m || (views[k].still && !moving.empty() && moving[0])) continue;
+    if (!m || NotPredictedBall(views[k], expected, motion)) continue;
     // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
     double score = -static_cast<double>(views[k].area_px);
     if (predicted) {
@@ -1698,18 +1709,28 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   return best;
 }
 
-std::vector<char> FrameSetTracker::PredictedMoving(const Eigen::Vector3d& predicted,
-                                                   const Eigen::Vector3d& velocity) const {
-  std::vector<char> moving(rig_.size(), 0);
+std::vector<double> FrameSetTracker::PredictedMotion(const Eigen::Vector3d& predicted,
+                                                     const Eigen::Vector3d& velocity) const {
+  std::vector<double> motion(rig_.size(), 0.0);
   for (int c = 0; c < rig_.size(); ++c) {
     const double period = frame_period_s_[c];
     if (!(period > 0.0)) continue;
     const Camera& camera = rig_.cameras[c];
     const auto a = camera.Project(predicted - 0.5 * period * velocity);
     const auto b = camera.Project(predicted + 0.5 * period * velocity);
-    moving[c] = a && b && (*b - *a).norm() > options_.still_max_motion_px;
+    if (a && b) motion[c] = (*b - *a).norm();
   }
-  return moving;
+  return motion;
+}
+
+bool FrameSetTracker::NotPredictedBall(const Detection& d, double expected_px,
+                                       std::optional<double> motion_px) const {
+  if (!motion_px) return false;
+  if (d.still && *motion_px > options_.still_max_motion_px) return true;
+  if (!(d.length_px > 0.0)) return false;
+  const double longest = options_.blur_size_share * std::max(d.diameter_px, expected_px) +
+                         options_.blur_motion_share * *motion_px + options_.blur_margin_px;
+  return d.length_px > longest;
 }
 
 std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& camera,
@@ -1737,7 +1758,7 @@ std::optional<Measurement> FrameSetTracker::SphereMeasurement(const Camera& came
 
 std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const std::vector<std::vector<Detection>>& candidates, const Eigen::Vector3d& predicted,
-    const Eigen::Matrix3d& predicted_covariance, std::span<const char> moving) const {
+    const Eigen::Matrix3d& predicted_covariance, std::span<const double> motion_px) const {
   std::optional<LoneView> best;
   double best_d2 = 0.0;
   for (int c = 0; c < rig_.size(); ++c) {
@@ -1769,7 +1790,11 @@ std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const Eigen::Matrix2d information = image_covariance.inverse();
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      if (d.still && moving[c]) continue;
+      if (NotPredictedBall(
+              d, expected,
+              motion_px.empty() ? std::nullopt : std::optional<double>(motion_px[c]))) {
+        continue;
+      }
       const Eigen::Vector2d r = d.pixel - *centre;
       const double d2 = r.dot(information * r);
       if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;

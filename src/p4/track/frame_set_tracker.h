@@ -209,6 +209,14 @@ struct FrameSetOptions {
   // many pixels of its camera in a frame period: the ball in flight moves (at the top of a toss,
   // or flying along the ray, it may stand still, and so does its prediction).
   double still_max_motion_px = 3.0;
+  // Nor is a view longer than the ball blurred over a frame period (an exposure lasts at most
+  // one): length <= blur_size_share x the larger of its diameter and the one expected at the
+  // prediction, plus blur_motion_share x the predicted travel in a frame period, plus
+  // blur_margin_px (a shoe, an arm or a shirt's edge of the ball's colour is long and slow; the
+  // ball's own streak lies along its motion).
+  double blur_size_share = 1.3;
+  double blur_motion_share = 1.5;
+  double blur_margin_px = 2.0;
   double single_view_depth_sigma = 1.0;  // m; depth of a lone view continuing a track
   // The hall about the table's centre where one camera's diameter may place the ball (m: half
   // its length and width, the highest centre; the floor is the lowest): farther is a misread.
@@ -325,6 +333,9 @@ struct Detection {
   bool cut = false;
   // Its diameter is the coverage sum on the background: the whole disc, its shaded part too.
   bool by_coverage = false;
+  // The region's length along its major axis, px (0: not known, as for a streak found along a
+  // path): a blurred ball is no longer than its disc plus its travel over the exposure.
+  double length_px = 0.0;
   // Centre and diameter from the ball's edge, which came early on this side (unit image
   // direction, segment::EdgeCentre::faint; zero when not known): FrameSetTracker::ShadedCentre.
   Eigen::Vector2d faint = Eigen::Vector2d::Zero();
@@ -539,13 +550,13 @@ class FrameSetTracker {
   void NoteTaken(TimeNs now, const std::vector<Revision>& revisions);
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
-  // Not a view that stood still where the track is predicted to move (`moving`, per camera;
-  // still_max_motion_px).
+  // Not a view that cannot be the ball predicted (NotPredictedBall; `motion_px` per camera, empty
+  // when the track's velocity is not known).
   std::optional<Measurement> SingleView(const std::vector<Detection>& views,
                                         const std::vector<std::optional<Measurement>>& placed,
                                         const std::optional<Eigen::Vector3d>& predicted,
                                         const Eigen::Matrix3d& predicted_covariance,
-                                        std::span<const char> moving,
+                                        std::span<const double> motion_px,
                                         std::vector<std::pair<int, int>>* used) const;
   // A view placed by its diameter (paper §3.2), known across its ray to pixel_sigma and along it
   // to diameter_sigma; nullopt outside the hall (hall_half_length, hall_half_width, floor to
@@ -553,8 +564,8 @@ class FrameSetTracker {
   std::optional<Measurement> SphereMeasurement(const Camera& camera, const Detection& d) const;
   // Several cameras, a track, no two views that agree: the view nearest the predicted one in
   // its image (Mahalanobis, the prediction's covariance projected; lone_view_gate_chi2,
-  // lone_view_image_sigma), of the size the predicted depth gives; its measurement on its ray at
-  // the predicted depth, and how well the filter knows that depth.
+  // lone_view_image_sigma), of the size the predicted depth gives and not NotPredictedBall's; its
+  // measurement on its ray at the predicted depth, and how well the filter knows that depth.
   struct LoneView {
     Measurement measurement;
     std::pair<int, int> id;  // (camera, candidate)
@@ -564,11 +575,17 @@ class FrameSetTracker {
   std::optional<LoneView> NearestLoneView(const std::vector<std::vector<Detection>>& candidates,
                                           const Eigen::Vector3d& predicted,
                                           const Eigen::Matrix3d& predicted_covariance,
-                                          std::span<const char> moving) const;
-  // Per camera: the ball predicted at `predicted` with `velocity` crosses more than
-  // still_max_motion_px of its image in a frame period (unknown period: false).
-  std::vector<char> PredictedMoving(const Eigen::Vector3d& predicted,
-                                    const Eigen::Vector3d& velocity) const;
+                                          std::span<const double> motion_px) const;
+  // Per camera: how far the ball predicted at `predicted` with `velocity` crosses its image in a
+  // frame period, px (0: the period or the projection unknown).
+  std::vector<double> PredictedMotion(const Eigen::Vector3d& predicted,
+                                      const Eigen::Vector3d& velocity) const;
+  // A view that cannot be the ball predicted there: it stood still where the ball moves more
+  // than still_max_motion_px, or it is longer than the ball blurred over a frame period
+  // (blur_size_share, blur_motion_share, blur_margin_px). `motion_px`: PredictedMotion's, or
+  // nothing known (no track).
+  bool NotPredictedBall(const Detection& d, double expected_px,
+                        std::optional<double> motion_px) const;
   // The lone views whose rows wait (lone_view_depth_sigma) that the smoothed track now places
   // (its depth along the ray known, its projection on the view, a two-view fix after it):
   // revisions of their time-stamps; those older than the hold are given up.

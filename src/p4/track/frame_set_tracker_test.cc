@@ -80,6 +80,23 @@ class FrameSetTrackerTest : public RenderedRigTest {
   }
   // Paints an orange disc into camera c's frame (a second orange object).
   void PaintOrange(int c, double cx, double cy, double r) { PaintDisc(c, cx, cy, r, 137, 65, 199); }
+  // Paints an orange ellipse into camera c's frame: half-axes a along `direction` (unit image
+  // vector) and b across it.
+  void PaintOrangeEllipse(int c, const Eigen::Vector2d& centre, const Eigen::Vector2d& direction,
+                          double a, double b) {
+    I420Image& f = frames_[c];
+    for (int row = 0; row < f.height(); ++row) {
+      for (int x = 0; x < f.width(); ++x) {
+        const Eigen::Vector2d o = Eigen::Vector2d(x, row) - centre;
+        const double along = o.dot(direction),
+                     across = o.x() * direction.y() - o.y() * direction.x();
+        if (along * along / (a * a) + across * across / (b * b) > 1.0) continue;
+        f.y()[row * f.width() + x] = 137;
+        f.u()[(row / 2) * f.chroma_width() + x / 2] = 65;
+        f.v()[(row / 2) * f.chroma_width() + x / 2] = 199;
+      }
+    }
+  }
 
   // The ball at p in camera c's image: its centre and radius, px (throws, failing the test, where
   // p does not project).
@@ -1186,6 +1203,46 @@ TEST_F(FrameSetTrackerTest, OneCameraTrackTakesNoStillSpotWhereItIsPredictedToMo
   }
   EXPECT_TRUE(tracking);
   EXPECT_EQ(measured_still, 0);
+}
+
+// One camera, a track; for 3 sets from k = kHidden the ball is hidden and an orange thing lies
+// where it would be, as wide as the ball and moving with it: a shoe, lying across the ball's path
+// and 6 ball diameters long (over twice what the ball, blurred over a whole frame period, covers:
+// its diameter plus its travel), is no view of the ball; a streak along the path as long as that
+// blur (an exposure of a whole frame period) is. (Painted longer, the shoe's flight would start
+// a track of its own: a shoe does not fly.)
+TEST_F(FrameSetTrackerTest, OneCameraTakesNoViewLongerThanTheBallsBlur) {
+  Rig one;
+  one.cameras = {rig_.cameras[0]};
+  const Camera& camera = one.cameras[0];
+  constexpr int kHidden = 16, kSets = kHidden + 3;
+  const auto measured_with = [&](bool shoe) {
+    FrameSetTracker tracker(one, segment::DefaultOrangeBall(), {});
+    int measured = 0;
+    for (int k = 0; k < kSets; ++k) {
+      auto views = Frames(k < kHidden ? std::optional<Eigen::Vector3d>(Ball(k)) : std::nullopt, k);
+      if (k >= kHidden) {
+        const Eigen::Vector2d at = camera.Project(Ball(k)).value();
+        const Eigen::Vector2d travel =
+            camera.Project(Ball(k) + 0.5 * (Ball(k + 1) - Ball(k - 1))).value() - at;
+        const double d = SphereDiameterPx(camera, Ball(k), table::kBallRadius);
+        EXPECT_GT(6.0 * d, 2.0 * (d + travel.norm())) << "the shoe must be long beside the blur";
+        if (shoe) {
+          const Eigen::Vector2d across(-travel.y(), travel.x());
+          PaintOrangeEllipse(0, at, across.normalized(), 3.0 * d, 0.5 * d);
+        } else {
+          PaintOrangeEllipse(0, at, travel.normalized(), 0.5 * (d + travel.norm()), 0.5 * d);
+        }
+      }
+      const auto result =
+          tracker.Process(FromSeconds(k / 120.0), std::vector<std::optional<ImageView>>{views[0]});
+      if (k == kHidden - 1) EXPECT_TRUE(result.state && result.state->measured);
+      if (k >= kHidden && result.measurement) ++measured;
+    }
+    return measured;
+  };
+  EXPECT_EQ(measured_with(true), 0);
+  EXPECT_EQ(measured_with(false), kSets - kHidden);
 }
 
 // One camera, a track: at k = kTwin the ball is painted 12 % small (its lower half in shadow;
