@@ -587,6 +587,12 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
           d.diameter_px = e->minor_diameter;
           d.faint = {e->faint[0], e->faint[1]};
           faint_votes_[c].Add(e->faint);
+        } else if (e->minor_diameter > 0.0) {
+          // No disc, but its centre leans to the lit side as a disc's would: the width across
+          // tells how far (the diameter stays the moments', which the depth and the size
+          // checks use; the camera's vote takes only discs).
+          d.faint = {e->faint[0], e->faint[1]};
+          d.edge_width_px = e->minor_diameter;
         }
       }
     }
@@ -1383,7 +1389,8 @@ Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expe
   if (faint.isZero() && !view.streak && !view.by_coverage) {
     faint_votes_[view.camera].Agreed(options_.shade, faint.data());
   }
-  segment::UnshadeCentre(view.diameter_px, faint.data(), expected_px, options_.shade, &centre.x(),
+  const double width = view.edge_width_px > 0.0 ? view.edge_width_px : view.diameter_px;
+  segment::UnshadeCentre(width, faint.data(), expected_px, options_.shade, &centre.x(),
                          &centre.y());
   return centre;
 }
@@ -1552,6 +1559,7 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
       d.observed = {e->cx, e->cy};
       d.pixel = d.observed + shift;
       d.diameter_px = e->minor_diameter;
+      d.edge_width_px = 0.0;  // a disc now: its width is its diameter
       changed = true;
     }
   }

@@ -339,6 +339,10 @@ struct Detection {
   // Centre and diameter from the ball's edge, which came early on this side (unit image
   // direction, segment::EdgeCentre::faint; zero when not known): FrameSetTracker::ShadedCentre.
   Eigen::Vector2d faint = Eigen::Vector2d::Zero();
+  // The width across of an edge fit that found the faint side but no disc (longer than
+  // edge_diameter_max_elongation: the ball's shaded part lost in a floor of its shade, its lit
+  // cap left), px; ShadedCentre measures what that side lost by it. 0: by diameter_px.
+  double edge_width_px = 0.0;
   // Found outside the window a coasting track's prediction would have searched (roi_max_missed):
   // with 2+ cameras for a new track only, never a measurement of the coasting one (whose grown
   // gate would take a hand or a shirt anywhere in the image).
