@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "p4/core/table.h"
 #include "p4/geometry/epipolar.h"
@@ -1719,7 +1720,7 @@ std::optional<Measurement> FrameSetTracker::SingleView(
 
 std::vector<double> FrameSetTracker::PredictedMotion(const Eigen::Vector3d& predicted,
                                                      const Eigen::Vector3d& velocity) const {
-  std::vector<double> motion(rig_.size(), 0.0);
+  std::vector<double> motion(rig_.size(), std::numeric_limits<double>::quiet_NaN());
   for (int c = 0; c < rig_.size(); ++c) {
     const double period = frame_period_s_[c];
     if (!(period > 0.0)) continue;
@@ -1733,7 +1734,7 @@ std::vector<double> FrameSetTracker::PredictedMotion(const Eigen::Vector3d& pred
 
 bool FrameSetTracker::NotPredictedBall(const Detection& d, double expected_px,
                                        std::optional<double> motion_px) const {
-  if (!motion_px) return false;
+  if (!motion_px || std::isnan(*motion_px)) return false;  // nothing known of its travel
   if (d.still && *motion_px > options_.still_max_motion_px) return true;
   if (!(d.length_px > 0.0)) return false;
   const double longest = options_.blur_size_share * std::max(d.diameter_px, expected_px) +

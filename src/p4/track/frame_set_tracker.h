@@ -581,13 +581,13 @@ class FrameSetTracker {
                                           const Eigen::Matrix3d& predicted_covariance,
                                           std::span<const double> motion_px) const;
   // Per camera: how far the ball predicted at `predicted` with `velocity` crosses its image in a
-  // frame period, px (0: the period or the projection unknown).
+  // frame period, px (NaN: the period or the projection unknown).
   std::vector<double> PredictedMotion(const Eigen::Vector3d& predicted,
                                       const Eigen::Vector3d& velocity) const;
   // A view that cannot be the ball predicted there: it stood still where the ball moves more
   // than still_max_motion_px, or it is longer than the ball blurred over a frame period
   // (blur_size_share, blur_motion_share, blur_margin_px). `motion_px`: PredictedMotion's, or
-  // nothing known (no track).
+  // nothing known (no track; NaN: neither is judged).
   bool NotPredictedBall(const Detection& d, double expected_px,
                         std::optional<double> motion_px) const;
   // The lone views whose rows wait (lone_view_depth_sigma) that the smoothed track now places
