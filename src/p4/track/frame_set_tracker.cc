@@ -746,7 +746,7 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // continues a track (a lone view of an orange speck must not start one), at the predicted depth.
   std::optional<WaitingView> waits;
   if (!result.measurement && options_.single_camera_fallback) {
-    std::vector<double> motion_px;
+    std::vector<double> motion_px(n, std::numeric_limits<double>::quiet_NaN());
     if (predicted) {
       if (const auto velocity = tracker_.PredictVelocity(t)) {
         motion_px = PredictedMotion(*predicted, *velocity);
@@ -1694,11 +1694,9 @@ std::optional<Measurement> FrameSetTracker::SingleView(
   double best_score = 0.0;
   int best_k = 0;
   const double expected = predicted ? ExpectedDiameterPx(rig_.cameras[0], *predicted) : 0.0;
-  const std::optional<double> motion =
-      motion_px.empty() ? std::nullopt : std::optional<double>(motion_px[0]);
   for (int k = 0; k < static_cast<int>(views.size()); ++k) {
     const std::optional<Measurement>& m = placed[k];
-    if (!m || NotPredictedBall(views[k], expected, motion)) continue;
+    if (!m || NotPredictedBall(views[k], expected, motion_px[0])) continue;
     // Without a prediction the largest region is the ball (paper §3.1); with one, the closest.
     double score = -static_cast<double>(views[k].area_px);
     if (predicted) {
@@ -1733,12 +1731,12 @@ std::vector<double> FrameSetTracker::PredictedMotion(const Eigen::Vector3d& pred
 }
 
 bool FrameSetTracker::NotPredictedBall(const Detection& d, double expected_px,
-                                       std::optional<double> motion_px) const {
-  if (!motion_px || std::isnan(*motion_px)) return false;  // nothing known of its travel
-  if (d.still && *motion_px > options_.still_max_motion_px) return true;
+                                       double motion_px) const {
+  if (std::isnan(motion_px)) return false;  // nothing known of its travel
+  if (d.still && motion_px > options_.still_max_motion_px) return true;
   if (!(d.length_px > 0.0)) return false;
   const double longest = options_.blur_size_share * std::max(d.diameter_px, expected_px) +
-                         options_.blur_motion_share * *motion_px + options_.blur_margin_px;
+                         options_.blur_motion_share * motion_px + options_.blur_margin_px;
   return d.length_px > longest;
 }
 
@@ -1799,11 +1797,7 @@ std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const Eigen::Matrix2d information = image_covariance.inverse();
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      if (NotPredictedBall(
-              d, expected,
-              motion_px.empty() ? std::nullopt : std::optional<double>(motion_px[c]))) {
-        continue;
-      }
+      if (NotPredictedBall(d, expected, motion_px[c])) continue;
       const Eigen::Vector2d r = d.pixel - *centre;
       const double d2 = r.dot(information * r);
       if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;

@@ -554,8 +554,8 @@ class FrameSetTracker {
   void NoteTaken(TimeNs now, const std::vector<Revision>& revisions);
   // One-camera rig: the view placed by its diameter (`placed`, one per view of camera 0); with a
   // prediction, the one nearest it.
-  // Not a view that cannot be the ball predicted (NotPredictedBall; `motion_px` per camera, empty
-  // when the track's velocity is not known).
+  // Not a view that cannot be the ball predicted (NotPredictedBall; `motion_px` per camera, NaN
+  // where the track's velocity or the camera's frame period is not known).
   std::optional<Measurement> SingleView(const std::vector<Detection>& views,
                                         const std::vector<std::optional<Measurement>>& placed,
                                         const std::optional<Eigen::Vector3d>& predicted,
@@ -586,10 +586,9 @@ class FrameSetTracker {
                                       const Eigen::Vector3d& velocity) const;
   // A view that cannot be the ball predicted there: it stood still where the ball moves more
   // than still_max_motion_px, or it is longer than the ball blurred over a frame period
-  // (blur_size_share, blur_motion_share, blur_margin_px). `motion_px`: PredictedMotion's, or
-  // nothing known (no track; NaN: neither is judged).
-  bool NotPredictedBall(const Detection& d, double expected_px,
-                        std::optional<double> motion_px) const;
+  // (blur_size_share, blur_motion_share, blur_margin_px). `motion_px`: PredictedMotion's (NaN,
+  // nothing known of the ball's travel: neither is judged).
+  bool NotPredictedBall(const Detection& d, double expected_px, double motion_px) const;
   // The lone views whose rows wait (lone_view_depth_sigma) that the smoothed track now places
   // (its depth along the ray known, its projection on the view, a two-view fix after it):
   // revisions of their time-stamps; those older than the hold are given up.

@@ -66,17 +66,24 @@ class FrameSetTrackerTest : public RenderedRigTest {
     return views;
   }
 
-  // Paints a disc of one YUV colour into camera c's frame.
-  void PaintDisc(int c, double cx, double cy, double r, uint8_t y, uint8_t u, uint8_t v) {
+  // Paints one YUV colour into camera c's frame where inside(x, row) holds.
+  void PaintWhere(int c, const std::function<bool(int, int)>& inside, uint8_t y, uint8_t u,
+                  uint8_t v) {
     I420Image& f = frames_[c];
     for (int row = 0; row < f.height(); ++row) {
       for (int x = 0; x < f.width(); ++x) {
-        if ((x - cx) * (x - cx) + (row - cy) * (row - cy) > r * r) continue;
+        if (!inside(x, row)) continue;
         f.y()[row * f.width() + x] = y;
         f.u()[(row / 2) * f.chroma_width() + x / 2] = u;
         f.v()[(row / 2) * f.chroma_width() + x / 2] = v;
       }
     }
+  }
+  // Paints a disc of one YUV colour into camera c's frame.
+  void PaintDisc(int c, double cx, double cy, double r, uint8_t y, uint8_t u, uint8_t v) {
+    PaintWhere(
+        c, [&](int x, int row) { return (x - cx) * (x - cx) + (row - cy) * (row - cy) <= r * r; },
+        y, u, v);
   }
   // Paints an orange disc into camera c's frame (a second orange object).
   void PaintOrange(int c, double cx, double cy, double r) { PaintDisc(c, cx, cy, r, 137, 65, 199); }
@@ -84,18 +91,12 @@ class FrameSetTrackerTest : public RenderedRigTest {
   // vector) and b across it.
   void PaintOrangeEllipse(int c, const Eigen::Vector2d& centre, const Eigen::Vector2d& direction,
                           double a, double b) {
-    I420Image& f = frames_[c];
-    for (int row = 0; row < f.height(); ++row) {
-      for (int x = 0; x < f.width(); ++x) {
-        const Eigen::Vector2d o = Eigen::Vector2d(x, row) - centre;
-        const double along = o.dot(direction),
-                     across = o.x() * direction.y() - o.y() * direction.x();
-        if (along * along / (a * a) + across * across / (b * b) > 1.0) continue;
-        f.y()[row * f.width() + x] = 137;
-        f.u()[(row / 2) * f.chroma_width() + x / 2] = 65;
-        f.v()[(row / 2) * f.chroma_width() + x / 2] = 199;
-      }
-    }
+    const auto inside = [&](int x, int row) {
+      const Eigen::Vector2d o = Eigen::Vector2d(x, row) - centre;
+      const double along = o.dot(direction), across = o.x() * direction.y() - o.y() * direction.x();
+      return along * along / (a * a) + across * across / (b * b) <= 1.0;
+    };
+    PaintWhere(c, inside, 137, 65, 199);
   }
 
   // The ball at p in camera c's image: its centre and radius, px (throws, failing the test, where
