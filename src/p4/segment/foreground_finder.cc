@@ -52,6 +52,15 @@ bool ForegroundOptions::IsValid(std::string* error) const {
   return true;
 }
 
+bool DiscSearchOptions::IsValid(std::string* error) const {
+  if (!(ring_share >= 0.0) || !(min_ring_px > 0.0) || !(min_fill > 0.0 && min_fill <= 1.0) ||
+      !(min_contrast >= 0.0) || refine_iterations < 0) {
+    if (error) *error = "disc search: need a positive ring, 0 < min fill <= 1, contrast >= 0";
+    return false;
+  }
+  return true;
+}
+
 int ForegroundFinder::Find(const ImageView& image, const BackgroundModel& bg,
                            const BallColour& ball, const Roi& roi_in,
                            const ForegroundOptions& options, std::vector<CoverageRegion>* out) {
@@ -211,13 +220,9 @@ void ForegroundFinder::GrowMask(const BackgroundModel& bg, const BlockRange& ran
   }
 }
 
-bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,
-                               const BallColour& ball, const Roi& window_in,
-                               const ForegroundOptions& options, CoverageRegion* out) {
-  const Roi w =
-      Roi{window_in.x0 & ~1, window_in.y0 & ~1, (window_in.x1 + 1) & ~1, (window_in.y1 + 1) & ~1}
-          .Clipped(bg.width(), bg.height());
-  if (w.empty()) return false;
+bool ForegroundFinder::FillCoverage(const ImageView& image, const BackgroundModel& bg,
+                                    const BallColour& ball, const Roi& w,
+                                    const ForegroundOptions& options, float* region_shade_out) {
   const int bx0 = w.x0 / 2, by0 = w.y0 / 2, bw = (w.x1 - w.x0) / 2, bh = (w.y1 - w.y0) / 2;
   // Per block: its shading and share when it is the ball; blocks next to the ball's that differ
   // only faintly are its edge; a block that differs with another colour is something else.
@@ -279,11 +284,11 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   // No ball block: nothing here is the ball. (Every ball block's share is at least min_alpha.)
   if (!(sum_a > 0.0)) return false;
   const auto region_shade = static_cast<float>(sum_as / sum_a);
+  *region_shade_out = region_shade;
   // Per pixel: the ball's share from the luma, between the background's and the ball's at the
   // block's shading; where they are too alike, the block's share from its colour.
-  double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
-  int core = 0, in_tables = 0;  // pixels mostly ball, and of those the ones the tables call ball
-  int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
+  const int pw = w.x1 - w.x0;
+  alpha_.assign(static_cast<std::size_t>(pw) * (w.y1 - w.y0), 0.0f);
   for (int y = w.y0; y < w.y1; ++y) {
     const int j = (y - w.y0) / 2;
     for (int x = w.x0; x < w.x1; ++x) {
@@ -319,9 +324,33 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
       }
       alpha = std::clamp(alpha, 0.0, 1.0);
       if (alpha < 0.05) continue;
+      alpha_[static_cast<std::size_t>(y - w.y0) * pw + (x - w.x0)] = static_cast<float>(alpha);
+    }
+  }
+  return true;
+}
+
+bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,
+                               const BallColour& ball, const Roi& window_in,
+                               const ForegroundOptions& options, CoverageRegion* out) {
+  const Roi w =
+      Roi{window_in.x0 & ~1, window_in.y0 & ~1, (window_in.x1 + 1) & ~1, (window_in.y1 + 1) & ~1}
+          .Clipped(bg.width(), bg.height());
+  if (w.empty()) return false;
+  float region_shade = 1.0f;
+  if (!FillCoverage(image, bg, ball, w, options, &region_shade)) return false;
+  const int pw = w.x1 - w.x0, bw = pw / 2;
+  double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  int core = 0, in_tables = 0;  // pixels mostly ball, and of those the ones the tables call ball
+  int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
+  for (int y = w.y0; y < w.y1; ++y) {
+    for (int x = w.x0; x < w.x1; ++x) {
+      const double alpha = alpha_[static_cast<std::size_t>(y - w.y0) * pw + (x - w.x0)];
+      if (alpha <= 0.0) continue;
       // The core's colour is judged where the block's own colour says it is mostly ball: a
       // small streak's chroma (half resolution, smeared by the encoder) is the background's too.
-      if (options.lut && alpha >= options.core_alpha && block_alpha[b] >= options.core_alpha) {
+      const std::size_t b = static_cast<std::size_t>((y - w.y0) / 2) * bw + (x - w.x0) / 2;
+      if (options.lut && alpha >= options.core_alpha && block_alpha_[b] >= options.core_alpha) {
         ++core;
         in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
       }
@@ -363,6 +392,114 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   // The ellipse of the moments (semi-axes 2 sqrt(lambda)) has area pi minor major / 4.
   r.roundness = std::min(1.0, sum / (M_PI / 4.0 * std::max(1.0, d.minor) * std::max(1.0, d.major)));
   r.streak_angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+  return true;
+}
+
+bool ForegroundFinder::FindDisc(const ImageView& image, const BackgroundModel& bg,
+                                const BallColour& ball, double cx, double cy, double search_px,
+                                double diameter_px, const ForegroundOptions& options,
+                                const DiscSearchOptions& disc, CoverageRegion* out) {
+  if (!(diameter_px > 0.0) || !(search_px >= 0.0)) return false;
+  const double radius = 0.5 * diameter_px;
+  const double ring = std::max(disc.min_ring_px, disc.ring_share * diameter_px);
+  const int reach = static_cast<int>(std::ceil(search_px + radius + ring)) + 2;
+  const int ix = static_cast<int>(std::lround(cx)), iy = static_cast<int>(std::lround(cy));
+  const Roi w =
+      Roi{(ix - reach) & ~1, (iy - reach) & ~1, (ix + reach + 2) & ~1, (iy + reach + 2) & ~1}
+          .Clipped(bg.width(), bg.height());
+  if (w.empty()) return false;
+  float region_shade = 1.0f;
+  if (!FillCoverage(image, bg, ball, w, options, &region_shade)) return false;
+  const int pw = w.x1 - w.x0;
+  const auto alpha_at = [&](int x, int y) {
+    return alpha_[static_cast<std::size_t>(y - w.y0) * pw + (x - w.x0)];
+  };
+  // The disc's and the ring's pixel offsets about a whole-pixel centre.
+  std::vector<std::pair<int, int>> inside, around;
+  const int outer = static_cast<int>(std::ceil(radius + ring));
+  for (int dy = -outer; dy <= outer; ++dy) {
+    for (int dx = -outer; dx <= outer; ++dx) {
+      const double d2 = dx * dx + dy * dy;
+      if (d2 <= radius * radius) {
+        inside.emplace_back(dx, dy);
+      } else if (d2 <= (radius + ring) * (radius + ring)) {
+        around.emplace_back(dx, dy);
+      }
+    }
+  }
+  if (inside.empty() || around.empty()) return false;
+  // The best whole-pixel centre whose ring lies in the window: the disc's mean share less the
+  // ring's (nearest to the guess among equals).
+  const int s = static_cast<int>(std::floor(search_px));
+  double best = -2.0, best_fill = 0.0, best_d2 = 0.0;
+  int bx = 0, by = 0;
+  for (int y = iy - s; y <= iy + s; ++y) {
+    for (int x = ix - s; x <= ix + s; ++x) {
+      const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+      if (d2 > search_px * search_px + 0.5) continue;
+      if (x - outer < w.x0 || y - outer < w.y0 || x + outer >= w.x1 || y + outer >= w.y1) {
+        continue;
+      }
+      double in = 0.0, rim = 0.0;
+      for (const auto& [dx, dy] : inside) in += alpha_at(x + dx, y + dy);
+      for (const auto& [dx, dy] : around) rim += alpha_at(x + dx, y + dy);
+      const double fill = in / static_cast<double>(inside.size());
+      const double score = fill - rim / static_cast<double>(around.size());
+      if (score > best + 1e-9 || (std::abs(score - best) <= 1e-9 && d2 < best_d2)) {
+        best = score, best_fill = fill, best_d2 = d2, bx = x, by = y;
+      }
+    }
+  }
+  if (best_fill < disc.min_fill || best < disc.min_contrast) return false;
+  // The centre by the coverage within the disc (its pixels whose centres lie within the radius:
+  // a ring half a pixel wider takes in what meets the ball, and leans to it), from the best whole
+  // pixel.
+  double mx = bx, my = by, sum = 0.0;
+  int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
+  int core = 0, in_tables = 0;
+  const double r2 = radius * radius;
+  for (int it = 0; it <= disc.refine_iterations; ++it) {
+    const bool last = it == disc.refine_iterations;
+    double sx = 0.0, sy = 0.0;
+    sum = 0.0;
+    for (int y = std::max(w.y0, static_cast<int>(std::floor(my - radius - 1)));
+         y <= std::min(w.y1 - 1, static_cast<int>(std::ceil(my + radius + 1))); ++y) {
+      for (int x = std::max(w.x0, static_cast<int>(std::floor(mx - radius - 1)));
+           x <= std::min(w.x1 - 1, static_cast<int>(std::ceil(mx + radius + 1))); ++x) {
+        if ((x - mx) * (x - mx) + (y - my) * (y - my) > r2) continue;
+        const double a = alpha_at(x, y);
+        if (a <= 0.0) continue;
+        sum += a, sx += a * x, sy += a * y;
+        if (!last) continue;
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1),
+        y1 = std::max(y1, y + 1);
+        const std::size_t b = static_cast<std::size_t>((y - w.y0) / 2) * (pw / 2) + (x - w.x0) / 2;
+        if (options.lut && a >= options.core_alpha && block_alpha_[b] >= options.core_alpha) {
+          ++core;
+          in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
+        }
+      }
+    }
+    if (sum < 0.5) return false;
+    if (!last) mx = sx / sum, my = sy / sum;
+  }
+  // The core shows the ball's colour, as Measure's round regions must.
+  if (options.lut && core >= options.core_min_pixels && in_tables < options.core_share * core) {
+    return false;
+  }
+  CoverageRegion& r = *out;
+  r = CoverageRegion{};
+  r.coverage = sum;
+  r.shade = region_shade;
+  r.roundness = best_fill;
+  Region& g = r.region;
+  g.cx = mx;
+  g.cy = my;
+  g.area = static_cast<int>(std::lround(sum));
+  g.x0 = x0, g.y0 = y0, g.x1 = x1, g.y1 = y1;
+  g.diameter = 2.0 * std::sqrt(sum / M_PI);
+  g.minor_diameter = g.major_diameter = diameter_px;
+  g.touches_border = x0 == 0 || y0 == 0 || x1 == bg.width() || y1 == bg.height();
   return true;
 }
 

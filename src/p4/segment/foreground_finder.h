@@ -16,6 +16,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "p4/core/image.h"
@@ -69,6 +70,19 @@ struct CoverageRegion {
   double roundness = 0.0;  // coverage / area of the ellipse of its moments (1 for a disc)
 };
 
+// A ball of known size inside a larger region of its colour (FindDisc).
+struct DiscSearchOptions {
+  // The ring about the disc that must be less ball than the disc: this share of the diameter
+  // wide, at least min_ring_px.
+  double ring_share = 0.4;
+  double min_ring_px = 2.0;
+  double min_fill = 0.6;       // the disc's pixels are on average at least this much ball...
+  double min_contrast = 0.45;  // ...and this much more than the ring's
+  int refine_iterations = 3;   // centre by the coverage within the disc, this many times
+
+  bool IsValid(std::string* error) const;
+};
+
 class ForegroundFinder {
  public:
   // Regions inside `roi` (whole image when empty), the roundest first (a blurred ball is an
@@ -104,17 +118,38 @@ class ForegroundFinder {
   bool Measure(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
                const Roi& window, const ForegroundOptions& options, CoverageRegion* out);
 
+  // The ball, of known diameter, inside a larger region that differs from the background with
+  // its colour (a ball that meets a line, an arm or a shirt's edge in the image): among the whole
+  // pixel centres within search_px of (cx, cy), the disc of that diameter that is most ball
+  // against a ring about it (a ball across a line has two thin crossings in its ring; one inside
+  // a shirt has a full ring and is not found). Its centre is then the coverage-weighted centre of
+  // the disc's pixels; out->coverage their sum, minor and major the disc's diameter, roundness
+  // the disc's fill. False when no disc stands out (DiscSearchOptions). Precondition: the model
+  // is ready and has the image's size; diameter_px > 0.
+  bool FindDisc(const ImageView& image, const BackgroundModel& background, const BallColour& ball,
+                double cx, double cy, double search_px, double diameter_px,
+                const ForegroundOptions& options, const DiscSearchOptions& disc,
+                CoverageRegion* out);
+
  private:
   std::vector<Run> runs_;
   // Per block of the window being measured: shading, share, kind, and whether it counts.
   std::vector<float> block_shade_, block_alpha_;
   std::vector<uint8_t> kind_, counts_;
+  std::vector<float> alpha_;             // per pixel of the window being measured: the ball's share
   std::vector<uint8_t> mask_, differs_;  // DifferingBlocks: the mask and the blocks before growth
   // The 2x2 blocks [x0, x1) x [y0, y1) of the background model.
   struct BlockRange {
     int x0, y0, x1, y1;
     int size() const { return x1 > x0 && y1 > y0 ? (x1 - x0) * (y1 - y0) : 0; }
   };
+  // The ball's share of every pixel of window `w` (even-aligned, inside the model) into alpha_
+  // (rows of w's width; 0 where nothing of the ball is), with the blocks' buffers above; the
+  // shading of the window's ball blocks weighted by share into *region_shade. False when no block
+  // of the window is the ball.
+  bool FillCoverage(const ImageView& image, const BackgroundModel& background,
+                    const BallColour& ball, const Roi& w, const ForegroundOptions& options,
+                    float* region_shade);
   // The blocks a pixel ROI covers, inside the model's.
   static BlockRange BlocksOf(const Roi& roi, const BackgroundModel& background);
   // The blocks of `range` that differ from the background by more than `sigmas`, each written

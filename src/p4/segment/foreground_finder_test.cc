@@ -4,11 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "p4/core/image.h"
 #include "p4/segment/background_model.h"
+#include "p4/segment/ball_colour.h"
 
 namespace p4::segment {
 namespace {
@@ -55,15 +60,129 @@ TEST(ForegroundFinder, DifferingBlocksWithinMasksOnlyItsWindows) {
 TEST(ForegroundFinder, DifferingShareCountsTheBlocksThatDiffer) {
   Scene scene;
   // The 8x8 square is 16 of a 24x24 window's 144 blocks.
-  EXPECT_NEAR(ForegroundFinder::DifferingShare(scene.frame.View(), scene.background,
-                                               {12, 8, 36, 32}, 3.0),
-              16.0 / 144.0, 1e-9);
+  EXPECT_NEAR(
+      ForegroundFinder::DifferingShare(scene.frame.View(), scene.background, {12, 8, 36, 32}, 3.0),
+      16.0 / 144.0, 1e-9);
   EXPECT_DOUBLE_EQ(
       ForegroundFinder::DifferingShare(scene.frame.View(), scene.background, {40, 30, 64, 48}, 3.0),
       0.0);
   EXPECT_DOUBLE_EQ(
       ForegroundFinder::DifferingShare(scene.frame.View(), scene.background, {10, 10, 10, 20}, 3.0),
       0.0);
+}
+
+// Paints the ball's colour over a flat frame where `inside` holds, by each pixel's covered share
+// (8x8 samples; the chroma per 2x2 block by the block's share).
+void PaintBall(I420Image* frame, const BallColour& ball,
+               const std::function<bool(double, double)>& inside) {
+  const int width = frame->width(), height = frame->height();
+  std::vector<double> share(static_cast<std::size_t>(width) * height, 0.0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      int n = 0;
+      for (int j = 0; j < 8; ++j) {
+        for (int i = 0; i < 8; ++i) n += inside(x - 0.5 + (i + 0.5) / 8, y - 0.5 + (j + 0.5) / 8);
+      }
+      share[static_cast<std::size_t>(y) * width + x] = n / 64.0;
+    }
+  }
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      uint8_t& luma = frame->y()[y * width + x];
+      const double a = share[static_cast<std::size_t>(y) * width + x];
+      luma = static_cast<uint8_t>(std::lround(luma + a * (ball.lit.y - luma)));
+    }
+  }
+  for (int by = 0; by < height / 2; ++by) {
+    for (int bx = 0; bx < width / 2; ++bx) {
+      double a = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        a += 0.25 * share[static_cast<std::size_t>(2 * by + k / 2) * width + 2 * bx + k % 2];
+      }
+      uint8_t& u = frame->u()[by * (width / 2) + bx];
+      uint8_t& v = frame->v()[by * (width / 2) + bx];
+      u = static_cast<uint8_t>(std::lround(u + a * (ball.lit.u - u)));
+      v = static_cast<uint8_t>(std::lround(v + a * (ball.lit.v - v)));
+    }
+  }
+}
+
+// A grey 96x64 hall learnt; the ball (10 px) at (50.3, 30.6) in the frames the cases paint.
+struct DiscScene {
+  static constexpr double kX = 50.3, kY = 30.6, kDiameter = 10.0;
+  BackgroundModel background;
+  I420Image frame;
+  BallColour ball = BallColour::Orange();
+  DiscScene() : background(96, 64, {}), frame(Flat(96, 64, 90)) {
+    const I420Image hall = Flat(96, 64, 90);
+    for (int k = 0; k < 10; ++k) background.Update(hall.View());
+  }
+  static bool InBall(double x, double y) { return std::hypot(x - kX, y - kY) <= 0.5 * kDiameter; }
+};
+
+// A ball that meets something of its colour in the image (a sleeve, a line) is one region with
+// it; the disc of the ball's known size is found in that region, its centre by its own coverage.
+TEST(ForegroundFinderDisc, ABallTouchingASleeveOfItsColourIsFoundByItsSize) {
+  DiscScene scene;
+  // A sleeve 26 px wide and 20 tall whose right side meets the ball's left edge.
+  PaintBall(&scene.frame, scene.ball, [](double x, double y) {
+    return DiscScene::InBall(x, y) ||
+           (x >= DiscScene::kX - 31.0 && x <= DiscScene::kX - 5.0 && y >= 22.0 && y <= 42.0);
+  });
+  ForegroundFinder finder;
+  const Roi window{20, 10, 70, 52};
+  CoverageRegion whole;
+  ASSERT_TRUE(finder.Measure(scene.frame.View(), scene.background, scene.ball, window, {}, &whole));
+  // Measured as one region, the centre lies in the sleeve.
+  EXPECT_GT(std::hypot(whole.region.cx - DiscScene::kX, whole.region.cy - DiscScene::kY), 8.0);
+  CoverageRegion disc;
+  ASSERT_TRUE(finder.FindDisc(scene.frame.View(), scene.background, scene.ball, DiscScene::kX - 3.0,
+                              DiscScene::kY + 2.0, 6.0, DiscScene::kDiameter, {}, {}, &disc));
+  EXPECT_NEAR(disc.region.cx, DiscScene::kX, 0.15);
+  EXPECT_NEAR(disc.region.cy, DiscScene::kY, 0.15);
+  EXPECT_NEAR(disc.region.diameter, DiscScene::kDiameter, 1.0);
+}
+
+TEST(ForegroundFinderDisc, ABallAcrossALineOfItsColourIsFoundByItsSize) {
+  DiscScene scene;
+  // A line 2 px wide through the ball, at 30 degrees.
+  PaintBall(&scene.frame, scene.ball, [](double x, double y) {
+    const double across = (x - DiscScene::kX) * 0.5 - (y - DiscScene::kY) * 0.866;
+    return DiscScene::InBall(x, y) || std::abs(across + 1.5) <= 1.0;
+  });
+  ForegroundFinder finder;
+  CoverageRegion disc;
+  ASSERT_TRUE(finder.FindDisc(scene.frame.View(), scene.background, scene.ball, DiscScene::kX + 2.0,
+                              DiscScene::kY - 2.0, 6.0, DiscScene::kDiameter, {}, {}, &disc));
+  EXPECT_NEAR(disc.region.cx, DiscScene::kX, 0.15);
+  EXPECT_NEAR(disc.region.cy, DiscScene::kY, 0.15);
+}
+
+TEST(ForegroundFinderDisc, NoDiscStandsOutInsideAShirtOfTheBallsColour) {
+  DiscScene scene;
+  // The ball wholly inside a shirt of its colour: nothing tells it from the shirt.
+  PaintBall(&scene.frame, scene.ball, [](double x, double y) {
+    return x >= DiscScene::kX - 20.0 && x <= DiscScene::kX + 20.0 && y >= 8.0 && y <= 56.0;
+  });
+  ForegroundFinder finder;
+  CoverageRegion disc;
+  EXPECT_FALSE(finder.FindDisc(scene.frame.View(), scene.background, scene.ball, DiscScene::kX,
+                               DiscScene::kY, 6.0, DiscScene::kDiameter, {}, {}, &disc));
+  // Nor where nothing differs from the background.
+  EXPECT_FALSE(finder.FindDisc(scene.frame.View(), scene.background, scene.ball, 85.0, 50.0, 4.0,
+                               DiscScene::kDiameter, {}, {}, &disc));
+}
+
+TEST(ForegroundFinderDisc, TheSearchsBoundsAreChecked) {
+  std::string error;
+  EXPECT_TRUE(DiscSearchOptions{}.IsValid(&error));
+  DiscSearchOptions o;
+  o.min_fill = 1.5;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("fill"), std::string::npos);
+  o = {};
+  o.min_ring_px = 0.0;
+  EXPECT_FALSE(o.IsValid(&error));
 }
 
 }  // namespace

@@ -58,7 +58,7 @@ bool FrameSetOptions::IsValid(std::string* error) const {
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
       !edge.IsValid(error) || !shade.IsValid(error) || !streak.IsValid(error) ||
-      !streak_finder.IsValid(error)) {
+      !streak_finder.IsValid(error) || !disc_search.IsValid(error)) {
     return false;
   }
   if (!(split_max_moving >= 0.0 && split_max_moving <= 1.0) || !(split_max_elongation >= 1.0)) {
@@ -290,6 +290,44 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
   return d;
 }
 
+std::optional<Detection> FrameSetTracker::MergedDiscView(int c, const ImageView& image,
+                                                         const Eigen::Vector3d& predicted,
+                                                         const Eigen::Matrix3d& covariance,
+                                                         std::span<const segment::Region> larger) {
+  const Camera& camera = rig_.cameras[c];
+  const auto px = camera.Project(predicted);
+  const double expected = ExpectedDiameterPx(camera, predicted);
+  if (!px || !(expected > 0.0)) return std::nullopt;
+  // Only where a larger region reaches the predicted place.
+  const double reach = 0.5 * expected;
+  if (std::none_of(larger.begin(), larger.end(), [&](const segment::Region& r) {
+        return px->x() >= r.x0 - reach && px->x() <= r.x1 + reach && px->y() >= r.y0 - reach &&
+               px->y() <= r.y1 + reach;
+      })) {
+    return std::nullopt;
+  }
+  const double depth = (camera.cam_from_world * predicted).z();
+  if (!(depth > 0.0)) return std::nullopt;
+  const double sigma_m = std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff()));
+  const double search = std::clamp(3.0 * camera.fx * sigma_m / depth, 2.0, expected);
+  segment::ForegroundOptions sized = options_.foreground;
+  sized.lut = &lut_;
+  sized.lut_mask = options_.segment.mask;
+  segment::CoverageRegion m;
+  if (!foreground_finders_[c].FindDisc(image, backgrounds_[c], options_.ball_colour, px->x(),
+                                       px->y(), search, expected, sized, options_.disc_search,
+                                       &m)) {
+    return std::nullopt;
+  }
+  Detection d{c, {m.region.cx, m.region.cy}, expected, m.region.area, false};
+  d.by_coverage = true;
+  d.in_merged = true;
+  d.cut = m.region.touches_border;
+  d.length_px = expected;
+  d.observed = d.pixel;
+  return d;
+}
+
 void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
   // The ball's size over the table's middle, a little above it.
   const double diameter = ExpectedDiameterPx(rig_.cameras[c], Eigen::Vector3d(0.0, 0.0, 0.2));
@@ -478,6 +516,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
                         : (by_coverage(k) ? measured_[c][k]->region : regions[k]);
   };
   int found = 0;
+  bool disc_seen = false;  // the ball found inside a larger region where predicted
   if (!search.roi.empty()) {
     found = both(search.roi, masked);
     // The window holds the ball only if a region there is the ball's size at the predicted point
@@ -500,11 +539,36 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       found = both(search.roi, true);
       sized = holds_ball();
     }
+    // A region larger than the ball where it is predicted, and none of its size and length
+    // there: the ball may meet a line, an arm or a shirt's edge of its colour (a bar as high as
+    // the ball joined to it keeps the region's width the ball's). The disc of its size there.
+    if (options_.disc_in_merged && rig_.size() >= 2 && predicted && background.ready()) {
+      const auto px = camera.Project(*predicted);
+      const double ratio = options_.max_size_ratio;
+      const double disc_area = 0.25 * M_PI * expected * expected;
+      std::vector<segment::Region> larger;
+      bool ball_sized = false;
+      for (int k = 0; k < found && px; ++k) {
+        const segment::Region& r = region_of(k);
+        if (r.area > ratio * ratio * disc_area || r.major_diameter > ratio * expected) {
+          larger.push_back(r);
+        } else if (SizeFits(r.minor_diameter, expected) &&
+                   std::hypot(r.cx - px->x(), r.cy - px->y()) <= expected) {
+          ball_sized = true;
+        }
+      }
+      if (!ball_sized && !larger.empty()) {
+        if (auto view = MergedDiscView(c, image, *predicted, covariance, larger)) {
+          out->push_back(*view);
+          disc_seen = true;
+        }
+      }
+    }
     if (options_.roi_needs_size && !sized) found = 0;
   }
   // Nothing of the ball's size where it is predicted: a faint streak along its predicted path?
   bool streak_seen = false;
-  if (found == 0 && streaks && predicted && velocity && background.ready()) {
+  if (found == 0 && !disc_seen && streaks && predicted && velocity && background.ready()) {
     if (auto streak = StreakView(c, image, *predicted, *velocity, covariance)) {
       out->push_back(*streak);
       streak_seen = true;
@@ -530,8 +594,8 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   }
   // No track, or nothing of it where predicted: the ball may be nowhere sharp, only a faint
   // streak somewhere.
-  if ((!predicted || (search.fell_back && !streak_seen)) && streaks && options_.streaks_anywhere &&
-      background.ready()) {
+  if ((!predicted || (search.fell_back && !streak_seen && !disc_seen)) && streaks &&
+      options_.streaks_anywhere && background.ready()) {
     StreakViews(c, image, out);
   }
   // Every region is looked at (a static spot must stay known however many there are). Regions
@@ -1797,7 +1861,9 @@ std::optional<FrameSetTracker::LoneView> FrameSetTracker::NearestLoneView(
     const Eigen::Matrix2d information = image_covariance.inverse();
     for (int k = 0; k < static_cast<int>(candidates[c].size()); ++k) {
       const Detection& d = candidates[c][k];
-      if (NotPredictedBall(d, expected, motion_px[c])) continue;
+      // A disc found inside a larger region where the track predicted it says nothing by itself
+      // that the prediction did not (its place was searched there, its size is the expected one).
+      if (d.in_merged || NotPredictedBall(d, expected, motion_px[c])) continue;
       const Eigen::Vector2d r = d.pixel - *centre;
       const double d2 = r.dot(information * r);
       if (d2 > options_.lone_view_gate_chi2 || (best && d2 >= best_d2)) continue;

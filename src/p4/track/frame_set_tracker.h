@@ -201,6 +201,14 @@ struct FrameSetOptions {
   segment::StreakFinderOptions streak_finder;
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
+  // In a camera with a background model (a white ball, a hall of the ball's colour, a webcam):
+  // when the window holds nothing of the ball's size but a region larger than the ball where
+  // it is predicted (the ball meets a line, an arm or a shirt's edge of its colour in the image),
+  // the disc of the ball's size there that stands out of its ring (segment::FindDisc), within 3
+  // sigmas of the prediction (at least 2 px, at most a diameter). Rigs of 2+ cameras only: its
+  // size is the expected one, and one camera's depth is the ball's measured size.
+  bool disc_in_merged = true;
+  segment::DiscSearchOptions disc_search;
   segment::BallColour ball_colour;
   double psf_sigma_px = 0.35;            // edge blur of lens and encoder (refined diameter)
   double max_prediction_distance = 0.6;  // m; candidates farther from the prediction are not it
@@ -333,6 +341,10 @@ struct Detection {
   bool cut = false;
   // Its diameter is the coverage sum on the background: the whole disc, its shaded part too.
   bool by_coverage = false;
+  // The disc of the ball's size found inside a larger region where the track predicts it
+  // (FrameSetOptions::disc_in_merged): its size is the one expected, no evidence, and it is no
+  // lone view (only another camera's view agreeing with it makes it the ball).
+  bool in_merged = false;
   // The region's length along its major axis, px (0: not known, as for a streak found along a
   // path): a blurred ball is no longer than its disc plus its travel over the exposure.
   double length_px = 0.0;
@@ -444,6 +456,12 @@ class FrameSetTracker {
                     const std::optional<Eigen::Vector3d>& velocity,
                     const Eigen::Matrix3d& covariance, bool window, CameraSearch* search,
                     std::vector<Detection>* out);
+  // Camera c's view of the ball inside a larger region (`larger`: the window's regions larger
+  // than the ball) where the track predicts it (FrameSetOptions::disc_in_merged).
+  std::optional<Detection> MergedDiscView(int c, const ImageView& image,
+                                          const Eigen::Vector3d& predicted,
+                                          const Eigen::Matrix3d& covariance,
+                                          std::span<const segment::Region> larger);
   // Whether camera c looks for faint streaks (FrameSetOptions::streaks), and its view of one
   // along the predicted path.
   bool SearchesStreaks(int c) const;

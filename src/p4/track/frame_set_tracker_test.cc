@@ -955,6 +955,47 @@ TEST_F(SharpRigTest, ABallMergedWithTheHittersHandInOneViewMakesNoPointThere) {
   EXPECT_LT(worst_two_view({}), 0.005);
 }
 
+TEST_F(SharpRigTest, ABallMeetingASleeveOfItsColourIsFoundByItsSize) {
+  // On the background (a white ball's detector), from set 6 on camera 1's ball meets a sleeve of
+  // its colour (a bar 3 ball diameters long and one high that wraps the ball's side): one region,
+  // as wide as the ball and four times as long. The disc of the ball's size where the track
+  // predicts it stands out of that region; without the disc search camera 1 has no view of the
+  // ball there. (The epipolar search is off: it would find the ball another way.)
+  for (const bool disc : {true, false}) {
+    FrameSetOptions options;
+    options.use_background = true;
+    options.disc_in_merged = disc;
+    options.search_epipolars = false;  // it would find the ball another way
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    for (int k = 0; k < 12; ++k) tracker.Process(FromSeconds(k / 120.0), Frames(std::nullopt, k));
+    int pairs = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 14; ++k) {
+      auto views = Frames(Ball(k), 12 + k);
+      if (k >= 6) {
+        const auto [px, r] = BallDisc(1, Ball(k));
+        PaintWhere(
+            1,
+            [&](int x, int row) {
+              return x >= px.x() - 7.0 * r && x <= px.x() && std::abs(row - px.y()) <= r &&
+                     std::hypot(x - px.x(), row - px.y()) > r + 0.5;
+            },
+            137, 65, 199);
+      }
+      const auto result = tracker.Process(FromSeconds((12 + k) / 120.0), views);
+      if (k < 6 || !result.measurement || result.measurement->cameras < 2) continue;
+      ++pairs;
+      worst = std::max(worst, (result.measurement->position - Ball(k)).norm());
+    }
+    if (disc) {
+      EXPECT_EQ(pairs, 8);
+      EXPECT_LT(worst, 0.005);
+    } else {
+      EXPECT_EQ(pairs, 0);
+    }
+  }
+}
+
 TEST_F(SharpRigTest, ABallTheTablesMissInOneCameraIsFoundAlongTheOthersEpipolar) {
   // Camera 0 sees the ball as rendered; in camera 1 it flies through dimmer light: its whole disc
   // a dark orange none of the tables' boxes takes (Y 80, V 150), of the same hue.
