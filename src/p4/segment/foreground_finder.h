@@ -11,6 +11,8 @@
 //    centre at mid-exposure, not its lit half; the coverage sum is the disc's area whatever the
 //    motion blur; the weighted moments give the streak's direction and length (the ball's image
 //    speed over the exposure).
+// 3. A ball of known size joined to something of its colour that also differs (a line, a sleeve)
+//    is found as the disc of that size which stands out of its ring (FindDisc).
 //
 // Pixel coordinates: centres at integers. Pure: buffers are kept between calls.
 #pragma once
@@ -120,7 +122,8 @@ class ForegroundFinder {
 
   // The ball, of known diameter, inside a larger region that differs from the background with
   // its colour (a ball that meets a line, an arm or a shirt's edge in the image): among the whole
-  // pixel centres within search_px of (cx, cy), the disc of that diameter that is most ball
+  // pixel centres within search_px of (cx, cy) (every tenth of a diameter, for a ball of 20 px
+  // and more), the disc of that diameter that is most ball
   // against a ring about it (a ball across a line has two thin crossings in its ring; one inside
   // a shirt has a full ring and is not found). Its centre is then the coverage-weighted centre of
   // the disc's pixels; out->coverage their sum, minor and major the disc's diameter, roundness

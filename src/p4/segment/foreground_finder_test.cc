@@ -158,6 +158,26 @@ TEST(ForegroundFinderDisc, ABallAcrossALineOfItsColourIsFoundByItsSize) {
   EXPECT_NEAR(disc.region.cy, DiscScene::kY, 0.15);
 }
 
+TEST(ForegroundFinderDisc, ALargeBallIsCentredFromItsCoarseGrid) {
+  // A ball of 26 px (searched every 2 px) touching a sleeve of its colour, 160x120.
+  const double x0 = 80.4, y0 = 60.7, d = 26.0;
+  BackgroundModel background(160, 120, {});
+  const I420Image hall = Flat(160, 120, 90);
+  for (int k = 0; k < 10; ++k) background.Update(hall.View());
+  I420Image frame = Flat(160, 120, 90);
+  const BallColour ball = BallColour::Orange();
+  PaintBall(&frame, ball, [&](double x, double y) {
+    return std::hypot(x - x0, y - y0) <= 0.5 * d ||
+           (x >= x0 - 70.0 && x <= x0 - 0.5 * d && std::abs(y - y0) <= 0.4 * d);
+  });
+  ForegroundFinder finder;
+  CoverageRegion disc;
+  ASSERT_TRUE(
+      finder.FindDisc(frame.View(), background, ball, x0 + 5.0, y0 - 4.0, 10.0, d, {}, {}, &disc));
+  EXPECT_NEAR(disc.region.cx, x0, 0.15);
+  EXPECT_NEAR(disc.region.cy, y0, 0.15);
+}
+
 TEST(ForegroundFinderDisc, NoDiscStandsOutInsideAShirtOfTheBallsColour) {
   DiscScene scene;
   // The ball wholly inside a shirt of its colour: nothing tells it from the shirt.
