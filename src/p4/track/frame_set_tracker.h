@@ -202,11 +202,13 @@ struct FrameSetOptions {
   segment::BackgroundOptions background;
   segment::ForegroundOptions foreground;
   // In a camera with a background model (a white ball, a hall of the ball's colour, a webcam):
-  // when the window holds nothing of the ball's size but a region larger than the ball where
-  // it is predicted (the ball meets a line, an arm or a shirt's edge of its colour in the image),
-  // the disc of the ball's size there that stands out of its ring (segment::FindDisc), within 3
-  // sigmas of the prediction (at least 2 px, at most a diameter). Rigs of 2+ cameras only: its
-  // size is the expected one, and one camera's depth is the ball's measured size.
+  // when a window region larger than the ball (its area over max_size_ratio^2 of the disc's, or
+  // longer than max_size_ratio diameters) reaches the predicted place and no region of the
+  // ball's size lies within a diameter of it (the ball meets a line, an arm or a shirt's edge of
+  // its colour in the image), the disc of the ball's size there that stands out of its ring
+  // (segment::FindDisc), within 3 sigmas of the prediction (at least 2 px, at most a diameter).
+  // Rigs of 2+ cameras only: its size is the expected one, and one camera's depth is the ball's
+  // measured size.
   bool disc_in_merged = true;
   segment::DiscSearchOptions disc_search;
   segment::BallColour ball_colour;
