@@ -172,6 +172,15 @@ double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
   return SphereDiameterPx(camera, point, table::kBallRadius);
 }
 
+// The prediction's spread in camera's image: its largest position sigma (covariance, m) across
+// the ray at its depth, px. NaN behind the camera.
+double PredictionSigmaPx(const Camera& camera, const Eigen::Vector3d& predicted,
+                         const Eigen::Matrix3d& covariance) {
+  const double depth = (camera.cam_from_world * predicted).z();
+  if (!(depth > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return camera.fx * std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff())) / depth;
+}
+
 // Whether the edge fit measured a width across (a disc, or a short streak within
 // max_elongation): its minor diameter is then the ball's.
 bool EdgeGivesDiameter(const segment::EdgeCentre& e, double max_elongation) {
@@ -277,11 +286,9 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
   // Shorter than two diameters over a whole frame: no faint streak, but a camera that looks for
   // them (a webcam) may still miss the ball in its colour tables: a ball of 3-4 px keeps little of
   // its chroma through 4:2:0 and the encoder. The same matched filter then looks for a disc.
-  const double depth = (camera.cam_from_world * predicted).z();
-  const double sigma_m = std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff()));
   segment::StreakSearchOptions o = options_.streak;
-  o.search_px =
-      std::clamp(3.0 * camera.fx * sigma_m / depth, std::min(4.0, o.search_px), o.search_px);
+  o.search_px = std::clamp(3.0 * PredictionSigmaPx(camera, predicted, covariance),
+                           std::min(4.0, o.search_px), o.search_px);
   const auto hit = streak_searches_[c].Find(image, backgrounds_[c], options_.ball_colour, mid->x(),
                                             mid->y(), path.x(), path.y(), path.norm(), diameter, o);
   if (!hit) return std::nullopt;
@@ -292,31 +299,16 @@ std::optional<Detection> FrameSetTracker::StreakView(int c, const ImageView& ima
 
 std::optional<Detection> FrameSetTracker::MergedDiscView(int c, const ImageView& image,
                                                          const Eigen::Vector3d& predicted,
-                                                         const Eigen::Matrix3d& covariance,
-                                                         std::span<const segment::Region> larger) {
+                                                         const Eigen::Vector2d& px, double expected,
+                                                         const Eigen::Matrix3d& covariance) {
   const Camera& camera = rig_.cameras[c];
-  const auto px = camera.Project(predicted);
-  const double expected = ExpectedDiameterPx(camera, predicted);
-  if (!px || !(expected > 0.0)) return std::nullopt;
-  // Only where a larger region reaches the predicted place.
-  const double reach = 0.5 * expected;
-  if (std::none_of(larger.begin(), larger.end(), [&](const segment::Region& r) {
-        return px->x() >= r.x0 - reach && px->x() <= r.x1 + reach && px->y() >= r.y0 - reach &&
-               px->y() <= r.y1 + reach;
-      })) {
-    return std::nullopt;
-  }
-  const double depth = (camera.cam_from_world * predicted).z();
-  if (!(depth > 0.0)) return std::nullopt;
-  const double sigma_m = std::sqrt(std::max(0.0, covariance.diagonal().maxCoeff()));
-  const double search = std::clamp(3.0 * camera.fx * sigma_m / depth, 2.0, expected);
-  segment::ForegroundOptions sized = options_.foreground;
-  sized.lut = &lut_;
-  sized.lut_mask = options_.segment.mask;
+  const double spread = PredictionSigmaPx(camera, predicted, covariance);
+  if (std::isnan(spread)) return std::nullopt;
+  const double search = std::clamp(3.0 * spread, 2.0, expected);
   segment::CoverageRegion m;
-  if (!foreground_finders_[c].FindDisc(image, backgrounds_[c], options_.ball_colour, px->x(),
-                                       px->y(), search, expected, sized, options_.disc_search,
-                                       &m)) {
+  if (!foreground_finders_[c].FindDisc(image, backgrounds_[c], options_.ball_colour, px.x(), px.y(),
+                                       search, expected, ForegroundWithTables(),
+                                       options_.disc_search, &m)) {
     return std::nullopt;
   }
   Detection d{c, {m.region.cx, m.region.cy}, expected, m.region.area, false};
@@ -326,6 +318,13 @@ std::optional<Detection> FrameSetTracker::MergedDiscView(int c, const ImageView&
   d.length_px = expected;
   d.observed = d.pixel;
   return d;
+}
+
+segment::ForegroundOptions FrameSetTracker::ForegroundWithTables() const {
+  segment::ForegroundOptions o = options_.foreground;
+  o.lut = &lut_;
+  o.lut_mask = options_.segment.mask;
+  return o;
 }
 
 void FrameSetTracker::StreakViews(int c, const ImageView& image, std::vector<Detection>* out) {
@@ -477,9 +476,7 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     return static_cast<int>(coverage.size());
   };
   const auto background_search = [&](const segment::Roi& roi) {
-    segment::ForegroundOptions sized = options_.foreground;
-    sized.lut = &lut_;
-    sized.lut_mask = options_.segment.mask;
+    segment::ForegroundOptions sized = ForegroundWithTables();
     sized.max_diameter_px = std::min(sized.max_diameter_px, 2.0 * table::kBallRadius * camera.fx);
     return foreground.Find(image, background, options_.ball_colour, roi, sized, &coverage);
   };
@@ -542,23 +539,24 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
     // A region larger than the ball where it is predicted, and none of its size and length
     // there: the ball may meet a line, an arm or a shirt's edge of its colour (a bar as high as
     // the ball joined to it keeps the region's width the ball's). The disc of its size there.
-    if (options_.disc_in_merged && rig_.size() >= 2 && predicted && background.ready()) {
-      const auto px = camera.Project(*predicted);
+    const auto px = camera.Project(*predicted);
+    if (options_.disc_in_merged && rig_.size() >= 2 && px && expected > 0.0 && background.ready()) {
       const double ratio = options_.max_size_ratio;
       const double disc_area = 0.25 * M_PI * expected * expected;
-      std::vector<segment::Region> larger;
-      bool ball_sized = false;
-      for (int k = 0; k < found && px; ++k) {
+      const double reach = 0.5 * expected;  // a larger region's box grown by this holds px
+      bool larger = false, ball_sized = false;
+      for (int k = 0; k < found; ++k) {
         const segment::Region& r = region_of(k);
         if (r.area > ratio * ratio * disc_area || r.major_diameter > ratio * expected) {
-          larger.push_back(r);
+          larger = larger || (px->x() >= r.x0 - reach && px->x() <= r.x1 + reach &&
+                              px->y() >= r.y0 - reach && px->y() <= r.y1 + reach);
         } else if (SizeFits(r.minor_diameter, expected) &&
                    std::hypot(r.cx - px->x(), r.cy - px->y()) <= expected) {
           ball_sized = true;
         }
       }
-      if (!ball_sized && !larger.empty()) {
-        if (auto view = MergedDiscView(c, image, *predicted, covariance, larger)) {
+      if (larger && !ball_sized) {
+        if (auto view = MergedDiscView(c, image, *predicted, *px, expected, covariance)) {
           out->push_back(*view);
           disc_seen = true;
         }

@@ -458,12 +458,14 @@ class FrameSetTracker {
                     const std::optional<Eigen::Vector3d>& velocity,
                     const Eigen::Matrix3d& covariance, bool window, CameraSearch* search,
                     std::vector<Detection>* out);
-  // Camera c's view of the ball inside a larger region (`larger`: the window's regions larger
-  // than the ball) where the track predicts it (FrameSetOptions::disc_in_merged).
+  // Camera c's view of the ball inside a larger region where the track predicts it (at px in
+  // its image, expected px wide; FrameSetOptions::disc_in_merged).
   std::optional<Detection> MergedDiscView(int c, const ImageView& image,
                                           const Eigen::Vector3d& predicted,
-                                          const Eigen::Matrix3d& covariance,
-                                          std::span<const segment::Region> larger);
+                                          const Eigen::Vector2d& px, double expected,
+                                          const Eigen::Matrix3d& covariance);
+  // options.foreground with the colour tables that judge a round region's core.
+  segment::ForegroundOptions ForegroundWithTables() const;
   // Whether camera c looks for faint streaks (FrameSetOptions::streaks), and its view of one
   // along the predicted path.
   bool SearchesStreaks(int c) const;
