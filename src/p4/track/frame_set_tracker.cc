@@ -457,14 +457,30 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   // lying on the floor do not) and is measured by its coverage; what differs from the background
   // with the ball's colour mixed in (a blurred streak, a ball of 3 px, a shaded or white ball)
   // joins them (`both` below).
+  // The tables kept as many regions as they keep (SegmentOptions::max_regions) and were searched
+  // again on what differs from the background (mask_when_crowded).
+  bool crowded = false;
   const auto colour_search = [&](const segment::Roi& roi, bool mask) {
     segment::BlockMask blocks;
-    if (mask) {
-      blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas,
-                                          options_.mask_grow);
+    const auto find = [&] {
+      if (mask) {
+        blocks = foreground.DifferingBlocks(image, background, roi, options_.mask_sigmas,
+                                            options_.mask_grow);
+      }
+      return finders_[c].Find(image, lut_, roi, options_.segment, &regions,
+                              mask ? &blocks : nullptr);
+    };
+    int n = find();
+    // The tables keep their largest regions only: where the hall has more of the ball's colour
+    // than that (a white hall's lines, lamps and lettering), the ball may be among those left
+    // out. Then only what differs from the background is searched again (with 2+ cameras: one
+    // camera cannot refuse the players' moving pieces that come with it).
+    if (options_.mask_when_crowded && rig_.size() >= 2 && !mask &&
+        n >= options_.segment.max_regions && background.ready()) {
+      mask = true;
+      crowded = true;
+      n = find();
     }
-    const int n =
-        finders_[c].Find(image, lut_, roi, options_.segment, &regions, mask ? &blocks : nullptr);
     if (!measure_only && !split && !on_background) return n;
     measured_[c].assign(n, std::nullopt);
     for (int k = 0; k < n; ++k) measured_[c][k] = MeasureOnBackground(c, image, regions[k]);
@@ -615,7 +631,26 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   if (static_cast<int>(order.size()) > options_.candidates_per_camera) {
-    order.resize(options_.candidates_per_camera);
+    if ((on_background || masked || crowded) && options_.keep_roundest) {
+      // Regions that differ from the background are mostly the players: the roundest are kept
+      // (a ball, even blurred over a short exposure, fills the ellipse of its moments; the
+      // pieces of players and their clothes that move do not), in the order they came.
+      const auto roundness = [&](int k) {
+        const segment::Region& r = region_of(k);
+        return r.area /
+               (0.25 * M_PI * std::max(1.0, r.minor_diameter) * std::max(1.0, r.major_diameter));
+      };
+      std::vector<std::pair<bool, int>> ranked = order;
+      std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first < b.first : roundness(a.second) > roundness(b.second);
+      });
+      ranked.resize(options_.candidates_per_camera);
+      std::erase_if(order, [&](const auto& o) {
+        return std::find(ranked.begin(), ranked.end(), o) == ranked.end();
+      });
+    } else {
+      order.resize(options_.candidates_per_camera);
+    }
   }
   for (const auto& [still, k] : order) {
     const segment::Region& r = region_of(k);

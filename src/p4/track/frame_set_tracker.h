@@ -183,6 +183,20 @@ struct FrameSetOptions {
   double split_max_elongation = 2.0;
   double mask_sigmas = 3.0;
   bool mask_grow = true;  // the mask grown by a block (the tables cut a ball's faint edge)
+  // In a camera that keeps a background model: when the colour tables find as many regions as
+  // they keep (SegmentOptions::max_regions, the largest), they search again on the blocks that
+  // differ from the background only (as mask_with_background). A white hall's lines, lamps and
+  // lettering are more, and larger than the ball: they crowded it out of the list (white tuning
+  // 20: a ball tossed before a server's black shorts, which the background's own search joins
+  // to it, lost in one camera for 0.5 s; docs/DECISIONS.md, "Detection"). Rigs of 2+ cameras:
+  // one camera has no second view to refuse the players' moving pieces the search brings.
+  bool mask_when_crowded = true;
+  // Where the candidates are regions that differ from the background (use_background,
+  // mask_with_background, or so searched again when crowded) and more than candidates_per_camera
+  // remain, the roundest are kept, not the largest: what differs is mostly the players, whose
+  // moving pieces are larger than the ball (the coverage over the area of the ellipse of the
+  // region's moments: 1 for a disc, and for a ball blurred into a short streak).
+  bool keep_roundest = true;
   // A faint blur streak looked for along the path the filter predicts (segment/streak_search.h)
   // when the window holds nothing of the ball's size: a webcam's 1/60-1/30 s exposure leaves a
   // ball a few levels over the table. Only one frame on from a measurement the filter took (a

@@ -996,6 +996,80 @@ TEST_F(SharpRigTest, ABallMeetingASleeveOfItsColourIsFoundByItsSize) {
   }
 }
 
+// Camera 1 of a hall crowded with the ball's colour: 20 static discs of it, twice the ball's
+// diameter, above the ball's path (a white hall's lamps and lettering); behind the ball a patch of
+// its shaded colour that moves (a server's dark shorts), which the background's own search joins
+// to the ball. `pieces` moving pieces of the ball's colour larger than it (crosses: a player's
+// clothing) join them. Sets 0-11 learn the hall without the ball; the ball flies in sets 12-25.
+struct CrowdedHall {
+  int pairs = 0;       // sets measured by two views
+  double worst = 0.0;  // m, of those from Ball(k)
+};
+
+TEST_F(SharpRigTest, ABallCrowdedOutOfTheTablesListIsFoundOnWhatDiffers) {
+  const auto run = [&](const FrameSetOptions& options, int pieces) {
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    const double r = BallDisc(1, Ball(6)).r;
+    const auto hall = [&](int k) {
+      for (int i = 0; i < 20; ++i) {
+        PaintOrange(1, 80.0 + 60.0 * (i % 10), 60.0 + 60.0 * (i / 10), 2.0 * r);
+      }
+      for (int i = 0; i < pieces; ++i) {
+        const double cx = 100.0 + 110.0 * i + 3.0 * k, cy = 640.0;
+        PaintWhere(
+            1,
+            [&](int x, int row) {
+              return (std::abs(x - cx) <= 3.0 * r && std::abs(row - cy) <= r) ||
+                     (std::abs(row - cy) <= 3.0 * r && std::abs(x - cx) <= r);
+            },
+            137, 65, 199);
+      }
+    };
+    for (int k = 0; k < 12; ++k) {
+      auto views = Frames(std::nullopt, k);
+      hall(k);
+      tracker.Process(FromSeconds(k / 120.0), views);
+    }
+    CrowdedHall m;
+    for (int k = 0; k < 14; ++k) {
+      auto views = Frames(Ball(k), 12 + k);
+      hall(12 + k);
+      const auto [px, rb] = BallDisc(1, Ball(k));
+      const double sx = px.x() + 2.0 * std::sin(k), sy = px.y() + 3.0 * rb;  // moves every set
+      PaintWhere(
+          1,
+          [&](int x, int row) {
+            return std::abs(x - sx) <= 3.0 * rb && std::abs(row - sy) <= 4.0 * rb &&
+                   std::hypot(x - px.x(), row - px.y()) > rb + 0.5;
+          },
+          52, 109, 149);
+      const auto result = tracker.Process(FromSeconds((12 + k) / 120.0), views);
+      if (!result.measurement || result.measurement->cameras < 2) continue;
+      ++m.pairs;
+      m.worst = std::max(m.worst, (result.measurement->position - Ball(k)).norm());
+    }
+    return m;
+  };
+  FrameSetOptions options;
+  options.use_background = true;     // a white ball's detector
+  options.search_epipolars = false;  // it would find the ball another way
+  options.disc_in_merged = false;    // so would the disc search, once a track runs
+  const CrowdedHall found = run(options, 0);
+  EXPECT_GE(found.pairs, 10);  // from the 4th set on, when the tracklet confirms
+  EXPECT_LT(found.worst, 0.005);
+  FrameSetOptions uncrowded = options;
+  uncrowded.mask_when_crowded = false;
+  EXPECT_EQ(run(uncrowded, 0).pairs, 0);
+  // Ten moving crosses larger than the ball among what differs: the roundest candidates are
+  // kept, the ball among them; the largest eight are the crosses.
+  const CrowdedHall among = run(options, 10);
+  EXPECT_GE(among.pairs, 10);
+  EXPECT_LT(among.worst, 0.005);
+  FrameSetOptions largest = options;
+  largest.keep_roundest = false;
+  EXPECT_EQ(run(largest, 10).pairs, 0);
+}
+
 TEST_F(SharpRigTest, ABallTheTablesMissInOneCameraIsFoundAlongTheOthersEpipolar) {
   // Camera 0 sees the ball as rendered; in camera 1 it flies through dimmer light: its whole disc
   // a dark orange none of the tables' boxes takes (Y 80, V 150), of the same hue.
