@@ -10,6 +10,8 @@
 // between calls, so a warmed-up finder does not allocate per frame.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,6 +54,13 @@ struct MomentDiameters {
   double minor = 0.0, major = 0.0;
 };
 MomentDiameters DiametersFromMoments(double cxx, double cyy, double cxy);
+
+// How much of the ellipse of a region's moments (diameters minor and major, px, each taken as at
+// least a pixel) its area fills: 1 for a disc and for a ball blurred into a short streak; less
+// for a ragged piece (a player's moving clothes). Not bounded above (a few pixels' region).
+inline double Roundness(double area, double minor_diameter, double major_diameter) {
+  return area / (0.25 * M_PI * std::max(1.0, minor_diameter) * std::max(1.0, major_diameter));
+}
 
 struct SegmentOptions {
   uint32_t mask = 0xffffffffu;  // classes that count as the object

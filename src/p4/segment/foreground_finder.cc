@@ -330,6 +330,23 @@ bool ForegroundFinder::FillCoverage(const ImageView& image, const BackgroundMode
   return true;
 }
 
+void ForegroundFinder::CountCore(const ImageView& image, const ForegroundOptions& options,
+                                 const Roi& w, int x, int y, double alpha, CoreCount* count) const {
+  // The core's colour is judged where the block's own colour says it is mostly ball: a small
+  // streak's chroma (half resolution, smeared by the encoder) is the background's too.
+  if (!options.lut || alpha < options.core_alpha) return;
+  const std::size_t b =
+      static_cast<std::size_t>((y - w.y0) / 2) * ((w.x1 - w.x0) / 2) + (x - w.x0) / 2;
+  if (block_alpha_[b] < options.core_alpha) return;
+  ++count->core;
+  count->in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
+}
+
+bool ForegroundFinder::CoreNotBall(const ForegroundOptions& options, const CoreCount& count) {
+  return options.lut && count.core >= options.core_min_pixels &&
+         count.in_tables < options.core_share * count.core;
+}
+
 bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg,
                                const BallColour& ball, const Roi& window_in,
                                const ForegroundOptions& options, CoverageRegion* out) {
@@ -339,21 +356,15 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   if (w.empty()) return false;
   float region_shade = 1.0f;
   if (!FillCoverage(image, bg, ball, w, options, &region_shade)) return false;
-  const int pw = w.x1 - w.x0, bw = pw / 2;
+  const int pw = w.x1 - w.x0;
   double sum = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
-  int core = 0, in_tables = 0;  // pixels mostly ball, and of those the ones the tables call ball
+  CoreCount core;
   int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
   for (int y = w.y0; y < w.y1; ++y) {
     for (int x = w.x0; x < w.x1; ++x) {
       const double alpha = alpha_[static_cast<std::size_t>(y - w.y0) * pw + (x - w.x0)];
       if (alpha <= 0.0) continue;
-      // The core's colour is judged where the block's own colour says it is mostly ball: a
-      // small streak's chroma (half resolution, smeared by the encoder) is the background's too.
-      const std::size_t b = static_cast<std::size_t>((y - w.y0) / 2) * bw + (x - w.x0) / 2;
-      if (options.lut && alpha >= options.core_alpha && block_alpha_[b] >= options.core_alpha) {
-        ++core;
-        in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
-      }
+      CountCore(image, options, w, x, y, alpha, &core);
       sum += alpha;
       sx += alpha * x, sy += alpha * y;
       sxx += alpha * x * x, syy += alpha * y * y, sxy += alpha * x * y;
@@ -385,12 +396,9 @@ bool ForegroundFinder::Measure(const ImageView& image, const BackgroundModel& bg
   r.streak_px = std::sqrt(std::max(0.0, 12.0 * (along - across)));
   // A round region (not a blur streak) shows the ball's own colour in its core: the colour
   // tables must agree with part of it (skin and shirts unmix as a shaded ball, the tables say no).
-  if (options.lut && core >= options.core_min_pixels &&
-      d.major < options.core_max_elongation * d.minor && in_tables < options.core_share * core) {
-    return false;
-  }
+  if (d.major < options.core_max_elongation * d.minor && CoreNotBall(options, core)) return false;
   // The ellipse of the moments (semi-axes 2 sqrt(lambda)) has area pi minor major / 4.
-  r.roundness = std::min(1.0, sum / (M_PI / 4.0 * std::max(1.0, d.minor) * std::max(1.0, d.major)));
+  r.roundness = std::min(1.0, Roundness(sum, d.minor, d.major));
   r.streak_angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
   return true;
 }
@@ -458,7 +466,7 @@ bool ForegroundFinder::FindDisc(const ImageView& image, const BackgroundModel& b
   // pixel.
   double mx = bx, my = by, sum = 0.0;
   int x0 = w.x1, y0 = w.y1, x1 = w.x0, y1 = w.y0;
-  int core = 0, in_tables = 0;
+  CoreCount core;
   const double r2 = radius * radius;
   for (int it = 0; it <= disc.refine_iterations; ++it) {
     const bool last = it == disc.refine_iterations;
@@ -475,20 +483,14 @@ bool ForegroundFinder::FindDisc(const ImageView& image, const BackgroundModel& b
         if (!last) continue;
         x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1),
         y1 = std::max(y1, y + 1);
-        const std::size_t b = static_cast<std::size_t>((y - w.y0) / 2) * (pw / 2) + (x - w.x0) / 2;
-        if (options.lut && a >= options.core_alpha && block_alpha_[b] >= options.core_alpha) {
-          ++core;
-          in_tables += InTables(image, *options.lut, options.lut_mask, x, y);
-        }
+        CountCore(image, options, w, x, y, a, &core);
       }
     }
     if (sum < 0.5) return false;
     if (!last) mx = sx / sum, my = sy / sum;
   }
   // The core shows the ball's colour, as Measure's round regions must.
-  if (options.lut && core >= options.core_min_pixels && in_tables < options.core_share * core) {
-    return false;
-  }
+  if (CoreNotBall(options, core)) return false;
   CoverageRegion& r = *out;
   r = CoverageRegion{};
   r.coverage = sum;

@@ -153,6 +153,17 @@ class ForegroundFinder {
   bool FillCoverage(const ImageView& image, const BackgroundModel& background,
                     const BallColour& ball, const Roi& w, const ForegroundOptions& options,
                     float* region_shade);
+  // Pixels mostly ball (their own share and their block's at least core_alpha), and of those the
+  // ones the colour tables call ball: a round region's core must show the ball's colour (skin
+  // and shirts unmix as a shaded ball; the tables say no).
+  struct CoreCount {
+    int core = 0, in_tables = 0;
+  };
+  // Counts pixel (x, y) of window w (after FillCoverage), whose share is alpha.
+  void CountCore(const ImageView& image, const ForegroundOptions& options, const Roi& w, int x,
+                 int y, double alpha, CoreCount* count) const;
+  // The tables refuse the core (with the tables, enough core pixels, too few of them in them).
+  static bool CoreNotBall(const ForegroundOptions& options, const CoreCount& count);
   // The blocks a pixel ROI covers, inside the model's.
   static BlockRange BlocksOf(const Roi& roi, const BackgroundModel& background);
   // The blocks of `range` that differ from the background by more than `sigmas`, each written

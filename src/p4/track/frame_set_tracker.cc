@@ -637,20 +637,14 @@ void FrameSetTracker::SearchCamera(int c, const ImageView& image,
       // pieces of players and their clothes that move do not), in the order they came.
       const auto roundness = [&](int k) {
         const segment::Region& r = region_of(k);
-        return r.area /
-               (0.25 * M_PI * std::max(1.0, r.minor_diameter) * std::max(1.0, r.major_diameter));
+        return segment::Roundness(r.area, r.minor_diameter, r.major_diameter);
       };
-      std::vector<std::pair<bool, int>> ranked = order;
-      std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+      std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
         return a.first != b.first ? a.first < b.first : roundness(a.second) > roundness(b.second);
       });
-      ranked.resize(options_.candidates_per_camera);
-      std::erase_if(order, [&](const auto& o) {
-        return std::find(ranked.begin(), ranked.end(), o) == ranked.end();
-      });
-    } else {
-      order.resize(options_.candidates_per_camera);
     }
+    order.resize(options_.candidates_per_camera);
+    std::sort(order.begin(), order.end());  // (still, region): the order they came in
   }
   for (const auto& [still, k] : order) {
     const segment::Region& r = region_of(k);
