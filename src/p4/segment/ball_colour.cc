@@ -44,6 +44,17 @@ bool BallColour::IsValid(std::string* error) const {
   return true;
 }
 
+bool UnmixOptions::IsValid(std::string* error) const {
+  if (!(chroma_weight > 0.0) || !(min_shade > 0.0 && max_shade > min_shade) ||
+      !(neutral_chroma >= 0.0)) {
+    if (error)
+      *error =
+          "unmix: need a positive chroma weight, 0 < min shade < max shade, neutral chroma >= 0";
+    return false;
+  }
+  return true;
+}
+
 Unmixed Unmix(const Yuv& o, const Yuv& bg, const BallColour& ball, const UnmixOptions& options) {
   const double w = std::sqrt(options.chroma_weight);
   // Weighted vectors: d = o - bg, e1 = K - bg, e2 = lit - K.
@@ -64,7 +75,11 @@ Unmixed Unmix(const Yuv& o, const Yuv& bg, const BallColour& ball, const UnmixOp
     a = (a22 * b1 - a12 * b2) / det;
     b = (a11 * b2 - a12 * b1) / det;
   }
-  const bool degenerate = det <= 1e-3 * a11 * a22 || a11 <= 1e-6;
+  const auto near_neutral = [&](const Yuv& c) {
+    return std::hypot(c.u - k.u, c.v - k.v) < options.neutral_chroma;
+  };
+  const bool degenerate =
+      det <= 1e-3 * a11 * a22 || a11 <= 1e-6 || (near_neutral(ball.lit) && near_neutral(bg));
   double s = !degenerate && std::abs(a) > 1e-6 ? b / a : 1.0;
   if (degenerate || !(s >= options.min_shade && s <= options.max_shade)) {
     // Shading cannot be told apart (s = 1), or is out of range (the nearest bound): the share

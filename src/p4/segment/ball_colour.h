@@ -55,10 +55,20 @@ struct Unmixed {
 struct UnmixOptions {
   double chroma_weight = 2.0;  // chroma counts this much more than luma (it shades less)
   double min_shade = 0.25, max_shade = 1.8;
+  // Levels of chroma: where the ball's lit colour and the background both lie within this of
+  // neutral (black's chroma), their chroma cannot tell the shading. A small ball's chroma is
+  // smeared into its background's by the encoder's half-resolution chroma, and cameras' white
+  // balances differ by as much: a white ball of 9 px showed (U, V) 126/129 in one camera and
+  // 130/127, its grey wall's, in the other, against a learnt 126/129. Fitted there, the shading
+  // follows those few levels (the ball taken for a fifth of a dark ball, or for none).
+  double neutral_chroma = 6.0;
+
+  bool IsValid(std::string* error) const;
 };
 
 // Solves o = (1 - a) bg + a (K + s (lit - K)) for a and s. Where the ball's colour and the
-// background lie on one line through black (a white ball on a grey wall) s is taken as 1.
+// background lie on one line through black (a white ball on a grey wall), or both within
+// neutral_chroma of neutral, s is taken as 1.
 Unmixed Unmix(const Yuv& observed, const Yuv& background, const BallColour& ball,
               const UnmixOptions& options = {});
 

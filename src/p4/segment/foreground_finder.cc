@@ -49,7 +49,7 @@ bool ForegroundOptions::IsValid(std::string* error) const {
     if (error) *error = "foreground: need 0 < min alpha < max alpha, positive bounds";
     return false;
   }
-  return true;
+  return unmix.IsValid(error);
 }
 
 bool DiscSearchOptions::IsValid(std::string* error) const {

@@ -205,5 +205,43 @@ TEST(ForegroundFinderDisc, TheSearchsBoundsAreChecked) {
   EXPECT_FALSE(o.IsValid(&error));
 }
 
+// A white ball of 9-10 px before a grey wall, its chroma the wall's (the encoder's half-resolution
+// chroma smears a small ball's into its background; found in white tuning 17, camera 1), measured
+// with the white learnt in the hall (126/129, a few levels off neutral as the wall's 130/127 is).
+// Near neutral the chroma cannot tell the shading: the ball is lit, and covers the disc whole.
+TEST(ForegroundFinder, AWhiteBallWithItsWallsChromaIsMeasuredWhole) {
+  const auto hall = [] {
+    I420Image image = Flat(96, 64, 140);
+    std::memset(image.u(), 130, static_cast<std::size_t>(48) * 32);
+    std::memset(image.v(), 127, static_cast<std::size_t>(48) * 32);
+    return image;
+  };
+  BackgroundModel background(96, 64, {});
+  for (int k = 0; k < 10; ++k) background.Update(hall().View());
+  I420Image frame = hall();
+  const BallColour seen{{205.0f, 130.0f, 127.0f}};    // as this camera shows it
+  const BallColour learnt{{210.0f, 126.0f, 129.0f}};  // as the hall's colours were learnt
+  PaintBall(&frame, seen, DiscScene::InBall);
+  const double disc = M_PI * 0.25 * DiscScene::kDiameter * DiscScene::kDiameter;
+  const Roi window{40, 20, 62, 42};
+  ForegroundFinder finder;
+  ForegroundOptions options;
+  CoverageRegion r;
+  ASSERT_TRUE(finder.Measure(frame.View(), background, learnt, window, options, &r));
+  // The luma says 0.93-0.97 of a ball lit as learnt (205 of 210 over 140).
+  EXPECT_NEAR(r.coverage, 0.93 * disc, 0.08 * disc);
+  EXPECT_NEAR(r.region.cx, DiscScene::kX, 0.2);
+  EXPECT_NEAR(r.region.cy, DiscScene::kY, 0.2);
+  // The shading fitted to those few levels of chroma: the ball's middle is no ball.
+  options.unmix.neutral_chroma = 0.0;
+  const bool found = finder.Measure(frame.View(), background, learnt, window, options, &r);
+  EXPECT_TRUE(!found || r.coverage < 0.5 * disc) << r.coverage;
+  std::string error;
+  EXPECT_TRUE(ForegroundOptions{}.IsValid(&error));
+  options.unmix.neutral_chroma = -1.0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("neutral"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace p4::segment
