@@ -84,9 +84,11 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "streak_min_frame_s must be positive";
     return false;
   }
-  if (!(backfill_px >= 0.0) || backfill_max_missed < 0) {
+  if (!(backfill_px >= 0.0) || backfill_max_missed < 0 || !(backfill_contact_mps >= 0.0)) {
     if (error)
-      *error = "backfill_px and backfill_max_missed must be at least 0 (0 px: no back-fill)";
+      *error =
+          "backfill_px, backfill_max_missed and backfill_contact_mps must be at least 0 (0 px: no "
+          "back-fill)";
     return false;
   }
   if (!(single_view_depth_sigma > 0.0) || !(single_view_max_depth_sigma > 0.0) ||
@@ -950,8 +952,10 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   // judged falling.
   if (not_ball) initiator_.NotTheBall(not_ball_points, options_.initiator.gate);
   while (!past_.empty() && t - past_.front().t > hold) past_.pop_front();
-  past_.push_back(
-      {t, result.detections, result.state && result.state->measured && !result.tentative});
+  const bool row = result.state && result.state->measured && !result.tentative;
+  Vector6d row_state = Vector6d::Zero();
+  if (row) row_state << result.state->position, result.state->velocity;
+  past_.push_back({t, result.detections, row, row_state});
   if (clock_) {
     const TimeNs t3 = clock_();
     result.stages = {t1 - t0, t2 - t1, t3 - t2};
@@ -1133,6 +1137,46 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   // first: placed when a set of two views further back fixes the flight, else given up.
   std::vector<Revision> pending;
   const auto push = [&](Revision r) { PushRevision(std::move(r), result); };
+  // Single views placed since the last set of two views (none before them fixed the flight):
+  // rows unless the search ends at a contact after them (backfill_contact_mps).
+  std::vector<Revision> placed;
+  const auto push_placed = [&] {
+    for (Revision& r : placed) push(std::move(r));
+    placed.clear();
+  };
+  // The search ends at `set`: a measured row whose views are not on the flight (x, p at `at`).
+  // Its flight carried forward and the new one meet at the contact; the views placed before it
+  // are dropped.
+  const auto ends_at_other_flight = [&](const PastSet& set) {
+    if (!(options_.backfill_contact_mps > 0.0) || !set.measured || placed.empty()) return;
+    Vector6d before = set.state, after = x;
+    Matrix6d unused = Matrix6d::Zero();
+    CarryFlight(kalman, ToSeconds(set.t - at), &after, &unused);
+    const TimeNs step = FromSeconds(0.001);
+    TimeNs contact = set.t;
+    double nearest = (before.head<3>() - after.head<3>()).norm();
+    Eigen::Vector3d dv = before.tail<3>() - after.tail<3>();
+    for (TimeNs u = set.t + step; u < flight_t0; u += step) {
+      CarryFlight(kalman, ToSeconds(step), &before, &unused);
+      CarryFlight(kalman, ToSeconds(step), &after, &unused);
+      const double d = (before.head<3>() - after.head<3>()).norm();
+      if (d < nearest) nearest = d, contact = u, dv = before.tail<3>() - after.tail<3>();
+    }
+    if (dv.norm() <= options_.backfill_contact_mps) return;
+    std::erase_if(placed, [&](const Revision& r) { return r.t < contact; });
+  };
+  // Whether two views of `set` the track took lie within backfill_px of the flight there.
+  const auto on_flight = [&](const PastSet& set) {
+    Vector6d y = x;
+    Matrix6d unused = Matrix6d::Zero();
+    CarryFlight(kalman, ToSeconds(set.t - at), &y, &unused);
+    int views = 0;
+    for (const Detection& d : set.detections) {
+      const auto seen = rig_.cameras[d.camera].Project(y.head<3>());
+      views += d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px;
+    }
+    return views >= 2;
+  };
   // The single views since the flight's last fix (x, p at `at`), whose depth the flight from
   // after them did not know: carried from this fix, which knows the velocity over the whole
   // span between.
@@ -1148,7 +1192,10 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;  // the flight's own sets: the adoption's revisions
     const bool ends = ends_search(*set);
-    if (ends && !(set->measured && !pending.empty())) break;
+    if (ends && !(set->measured && !pending.empty())) {
+      if (!on_flight(*set)) ends_at_other_flight(*set);
+      break;
+    }
     CarryFlight(kalman, ToSeconds(set->t - at), &x, &p);
     at = set->t;
     // A row measured then ends the search; if its views lie on the flight (backfill_px), its
@@ -1178,10 +1225,12 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
           x = backward.state();
           p = backward.covariance();
           place_pending();
+          push_placed();
           r.state.velocity = x.tail<3>();
           push(std::move(r));
         }
       }
+      ends_at_other_flight(*set);  // (nothing placed is left after a fix)
       break;
     }
     Revision r;
@@ -1206,6 +1255,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       x = backward.state();
       p = backward.covariance();
       place_pending();
+      push_placed();
       push(std::move(r));
     } else {
       // One: its ray corrects the flight across it; its depth is the flight's, if it knows it
@@ -1224,12 +1274,13 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       r.measurement.cameras = 1;
       r.state.velocity = x.tail<3>();
       if (PlaceOnRay(x, p.topLeftCorner<3, 3>(), &r)) {
-        push(std::move(r));
+        placed.push_back(std::move(r));
       } else {
         pending.push_back(std::move(r));
       }
     }
   }
+  push_placed();
 }
 
 void FrameSetTracker::FillGaps(std::span<const FilterStep> steps, TimeNs flight_t0,

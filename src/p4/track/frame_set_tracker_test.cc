@@ -1627,6 +1627,55 @@ TEST_F(FrameSetTrackerTest, TheFlightAcrossAHitWithSpinPlacesOneCamerasViews) {
   }
 }
 
+// Two cameras at 120 fps: a flight; camera 1 loses the ball for the 2 sets before a hit (the
+// hitter's shirt) while camera 0 sees it, and both lose it for the 2 sets after (the racket). The
+// hit pushes the ball 10 m/s along camera 0's line of sight, so that the new flight carried back
+// lies on camera 0's rays through the ball before the hit (white tuning 23). The new track's
+// back-fill ends at the old flight's last row, whose views are not on the new flight: the two
+// flights meet at the hit, 10 m/s apart, and camera 0's views before it are not the new
+// flight's (placed on it, their rows lie 6-15 cm along their rays). The depth rule is relaxed to
+// 5 cm so that the views are placed at once, as in white tuning 23 at 60 fps (1-2 frames back,
+// under 2 cm); there it is backfill_contact_mps that drops them (0: placed).
+TEST_F(FrameSetTrackerTest, ViewsBeforeAHitAreNotPlacedOnTheNewFlight) {
+  constexpr int kHit = 12, kSets = 26;
+  const double t_hit = (kHit - 0.5) / 120.0;
+  const Eigen::Vector3d along = (HitBall(t_hit) - rig_.cameras[0].Center()).normalized();
+  const Eigen::Vector3d v_hit(5.0, -0.3, 1.5 - 9.81 * t_hit);
+  const auto ball = [&](double t) -> Eigen::Vector3d {
+    if (t < t_hit) return HitBall(t);
+    const double s = t - t_hit;
+    return HitBall(t_hit) + s * (v_hit - 10.0 * along) + Eigen::Vector3d(0.0, 0.0, -4.9 * s * s);
+  };
+  const auto seen = [](int c, int k) {
+    return (c == 0 && k < kHit) || k < kHit - 2 || k >= kHit + 2;
+  };
+  for (const double contact : {FrameSetOptions{}.backfill_contact_mps, 0.0}) {
+    FrameSetOptions options;
+    options.backfill_contact_mps = contact;
+    options.single_view_max_depth_sigma = 0.05;
+    const std::vector<FrameSetResult> rows = RowsSeen(options, kSets, ball, seen);
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
+    const auto measured = [&](int k) { return rows[k].state && rows[k].state->measured; };
+    for (int k = 0; k < kHit - 2; ++k) EXPECT_TRUE(measured(k)) << k;
+    for (int k = kHit + 2; k < kSets; ++k) EXPECT_TRUE(measured(k)) << k;
+    int placed = 0;
+    double worst = 0.0;
+    for (int k = kHit - 2; k < kHit; ++k) {
+      if (!measured(k)) continue;
+      ++placed;
+      worst = std::max(worst, (rows[k].state->position - ball(k / 120.0)).norm());
+    }
+    std::printf("contact %.1f m/s: %d of camera 0's 2 views before the hit placed, %.1f mm off\n",
+                contact, placed, 1e3 * worst);
+    if (contact > 0.0) {
+      EXPECT_LT(worst, 0.01);  // none placed, or on the old flight
+    } else {
+      EXPECT_EQ(placed, 2);
+      EXPECT_GT(worst, 0.05);
+    }
+  }
+}
+
 // The ball flies past the table's end, away from the net, and is hidden from set kLast + 1 on
 // (the hitter's racket and body); in sets kLast + 2 to kLast + 4 a piece of the hitter's shirt of
 // the ball's colour and size lies 15 cm below the coasting flight's path and moves on level at
@@ -1863,6 +1912,8 @@ void ExpectOffAllowedAndBadNamed(double FrameSetOptions::*field, double off, dou
 
 TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
   ExpectOffAllowedAndBadNamed(&FrameSetOptions::backfill_px, 0.0, -1.0, "backfill_px");
+  ExpectOffAllowedAndBadNamed(&FrameSetOptions::backfill_contact_mps, 0.0, -1.0,
+                              "backfill_contact_mps");
 }
 
 TEST(FrameSetOptions, TheBridgeBoundsAreChecked) {
