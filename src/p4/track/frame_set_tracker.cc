@@ -191,11 +191,13 @@ bool EdgeGivesDiameter(const segment::EdgeCentre& e, double max_elongation) {
 
 // A flight's state and covariance carried over dt seconds, back or forth: gravity and drag in
 // steps of at most 4 ms (the midpoint rule: well under a millimetre), the covariance as uniform
-// motion (the position's spread grows with the velocity's).
-void CarryFlight(const KalmanOptions& kalman, double dt, Vector6d* state, Matrix6d* covariance) {
+// motion (the position's spread grows with the velocity's); `covariance` may be null.
+void CarryFlight(const KalmanOptions& kalman, double dt, Vector6d* state,
+                 Matrix6d* covariance = nullptr) {
   const int n = static_cast<int>(std::ceil(std::abs(dt) / 0.004));
   const double h = dt / std::max(1, n);
   for (int k = 0; k < n; ++k) *state = DragStep(*state, h, kalman.gravity, kalman.drag_per_mass);
+  if (!covariance) return;
   Matrix6d f = Matrix6d::Identity();
   f.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
   *covariance = f * *covariance * f.transpose();
@@ -1150,32 +1152,25 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   const auto ends_at_other_flight = [&](const PastSet& set) {
     if (!(options_.backfill_contact_mps > 0.0) || !set.measured || placed.empty()) return;
     Vector6d before = set.state, after = x;
-    Matrix6d unused = Matrix6d::Zero();
-    CarryFlight(kalman, ToSeconds(set.t - at), &after, &unused);
+    CarryFlight(kalman, ToSeconds(set.t - at), &after);
     const TimeNs step = FromSeconds(0.001);
     TimeNs contact = set.t;
     double nearest = (before.head<3>() - after.head<3>()).norm();
     Eigen::Vector3d dv = before.tail<3>() - after.tail<3>();
     for (TimeNs u = set.t + step; u < flight_t0; u += step) {
-      CarryFlight(kalman, ToSeconds(step), &before, &unused);
-      CarryFlight(kalman, ToSeconds(step), &after, &unused);
+      CarryFlight(kalman, ToSeconds(step), &before);
+      CarryFlight(kalman, ToSeconds(step), &after);
       const double d = (before.head<3>() - after.head<3>()).norm();
       if (d < nearest) nearest = d, contact = u, dv = before.tail<3>() - after.tail<3>();
     }
     if (dv.norm() <= options_.backfill_contact_mps) return;
     std::erase_if(placed, [&](const Revision& r) { return r.t < contact; });
   };
-  // Whether two views of `set` the track took lie within backfill_px of the flight there.
+  // Whether two views of `set` the track took lie on the flight there.
   const auto on_flight = [&](const PastSet& set) {
     Vector6d y = x;
-    Matrix6d unused = Matrix6d::Zero();
-    CarryFlight(kalman, ToSeconds(set.t - at), &y, &unused);
-    int views = 0;
-    for (const Detection& d : set.detections) {
-      const auto seen = rig_.cameras[d.camera].Project(y.head<3>());
-      views += d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px;
-    }
-    return views >= 2;
+    CarryFlight(kalman, ToSeconds(set.t - at), &y);
+    return TakenViewsOn(set, y.head<3>()).size() >= 2;
   };
   // The single views since the flight's last fix (x, p at `at`), whose depth the flight from
   // after them did not know: carried from this fix, which knows the velocity over the whole
@@ -1206,14 +1201,11 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
       r.t = set->t;
       std::vector<Observation> o;
       Hypothesis views;
-      for (int i = 0; i < static_cast<int>(set->detections.size()); ++i) {
+      for (const int i : TakenViewsOn(*set, x.head<3>())) {
         const Detection& d = set->detections[i];
-        const auto seen = rig_.cameras[d.camera].Project(x.head<3>());
-        if (d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px) {
-          o.push_back({d.camera, shaded(d)});
-          views.members.emplace_back(d.camera, i);
-          r.accepted.push_back(i);
-        }
+        o.push_back({d.camera, shaded(d)});
+        views.members.emplace_back(d.camera, i);
+        r.accepted.push_back(i);
       }
       if (o.size() >= 2) {
         if (const auto e = TriangulateObservations(rig_.cameras, o, triangulation_);
@@ -1327,6 +1319,17 @@ bool FrameSetTracker::RowOnFlight(const PastSet& set, const Vector6d& flight,
   r->measurement = ToMeasurement(views);
   r->state.velocity = flight.tail<3>();
   return true;
+}
+
+std::vector<int> FrameSetTracker::TakenViewsOn(const PastSet& set,
+                                               const Eigen::Vector3d& point) const {
+  std::vector<int> on;
+  for (int i = 0; i < static_cast<int>(set.detections.size()); ++i) {
+    const Detection& d = set.detections[i];
+    const auto seen = rig_.cameras[d.camera].Project(point);
+    if (d.accepted && seen && (*seen - d.pixel).norm() <= options_.backfill_px) on.push_back(i);
+  }
+  return on;
 }
 
 void FrameSetTracker::ViewsOnFlight(const PastSet& set, const Eigen::Vector3d& point, Revision* r,

@@ -747,6 +747,9 @@ class FrameSetTracker {
   // done) where it does not hold.
   bool Bridge(std::span<const FilterStep> steps, std::span<const SmoothedState> smoothed,
               std::size_t first, TimeNs flight_t0, FrameSetResult* result);
+  // The indices of the set's views the track took (a measured row's) that lie within
+  // backfill_px of `point` in their images.
+  std::vector<int> TakenViewsOn(const PastSet& set, const Eigen::Vector3d& point) const;
   // Per camera, the set's view nearest the flight's point within backfill_px; not still or cut
   // views, nor fragments (a view below min_size_ratio of the ball's size there: a highlight, the
   // lit cap of a shaded ball, whose centre is off the ball's). Each view's index joins
