@@ -40,6 +40,9 @@ struct TrackedState {
   bool measured = false;  // a measurement corrected this time-stamp
   int cameras = 0;
   double residual_px = 0.0;
+  // Placed on a short flight between two contacts (FrameSetTracker::BetweenContacts): that
+  // flight judged it; FlightCheck, whose sides are the flights before and after, does not.
+  bool between_contacts = false;
 };
 
 struct TrackerOptions {

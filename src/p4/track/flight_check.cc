@@ -11,6 +11,11 @@ namespace {
 constexpr double kStepS = 0.0025;  // integration step of a side's flight
 
 bool Measured(const FrameSetResult& r) { return r.measurement.has_value() && !r.tentative; }
+// A measured row of the flights the check judges: not one placed on a short flight between two
+// contacts (TrackedState::between_contacts), which neither side's flight holds.
+bool Judged(const FrameSetResult& r) {
+  return Measured(r) && !(r.state && r.state->between_contacts);
+}
 
 // Position and velocity at times[0] (relative times dt[k]) of the rows, under the model's
 // gravity and the drag of their mean velocity; *rms: the rows' 3D RMS residual.
@@ -99,7 +104,7 @@ std::vector<FlightCheck::Row> FlightCheck::SideRows(int i, int direction,
   const int n = static_cast<int>(held_.size());
   for (int j = i + direction; j >= 0 && j < n; j += direction) {
     const Held& h = held_[j];
-    if (!Measured(h.result) || (skip_suspects && h.score > 1.0)) continue;
+    if (!Judged(h.result) || (skip_suspects && h.score > 1.0)) continue;
     if (!take(h.result.t, h.result.measurement->position)) return rows;
   }
   if (direction < 0) {
@@ -144,7 +149,7 @@ void FlightCheck::Judge(TimeNs newest, bool all) {
   const int n = static_cast<int>(held_.size());
   for (int i = 0; i < n; ++i) {
     Held& h = held_[i];
-    if (h.judged || !Measured(h.result) || (!all && h.result.t + horizon_ > newest)) continue;
+    if (h.judged || !Judged(h.result) || (!all && h.result.t + horizon_ > newest)) continue;
     h.judged = true;
     Score(i, false);
   }
@@ -152,7 +157,7 @@ void FlightCheck::Judge(TimeNs newest, bool all) {
     int worst = -1;
     for (int i = 0; i < n; ++i) {
       const Held& h = held_[i];
-      if (!h.judged || !Measured(h.result) || h.score <= 1.0) continue;
+      if (!h.judged || !Judged(h.result) || h.score <= 1.0) continue;
       if (!all && h.result.t + 2 * horizon_ > newest) continue;
       if (worst < 0 || h.score > held_[worst].score) worst = i;
     }
@@ -173,7 +178,7 @@ void FlightCheck::Judge(TimeNs newest, bool all) {
     DropUnconfirmedStates(worst);
     for (int i = 0; i < n; ++i) {
       Held& h = held_[i];
-      if (h.judged && Measured(h.result) && std::abs(h.result.t - r.t) <= horizon_) Score(i, false);
+      if (h.judged && Judged(h.result) && std::abs(h.result.t - r.t) <= horizon_) Score(i, false);
     }
   }
 }
@@ -208,7 +213,7 @@ std::vector<FrameSetResult> FlightCheck::Push(FrameSetResult result) {
   std::vector<FrameSetResult> out;
   while (!held_.empty() && held_.front().result.t + 2 * horizon_ <= newest) {
     FrameSetResult& r = held_.front().result;
-    if (Measured(r)) past_.push_back({r.t, r.measurement->position});
+    if (Judged(r)) past_.push_back({r.t, r.measurement->position});
     released_run_measured_ = r.state && (released_run_measured_ || Measured(r));
     out.push_back(std::move(r));
     held_.pop_front();

@@ -141,6 +141,36 @@ TEST(FlightCheck, KeepsTheRowsOfAHit) {
   }
 }
 
+TEST(FlightCheck, LeavesAShortFlightBetweenTwoContactsToTheTracker) {
+  // A hit sends the ball back at 15 m/s and 3 rows later the net sends it on (sports tuning 11):
+  // no side's flight holds the 3 rows between. As the tracker placed them on their own flight
+  // (TrackedState::between_contacts) they are neither judged nor a side; unmarked, they go.
+  const double t1 = 20.5 / kFps, t2 = 23.5 / kFps;
+  const Eigen::Vector3d p0(-1.2, 0.1, 0.25), v0(6.0, -0.5, 1.5), v_back(-15.0, 0.5, 0.5);
+  const Eigen::Vector3d at_hit = Ballistic(p0, v0, t1);
+  const Eigen::Vector3d at_net = at_hit + (t2 - t1) * v_back;
+  const auto at = [&](double t) -> Eigen::Vector3d {
+    if (t < t1) return Ballistic(p0, v0, t);
+    if (t < t2) return at_hit + (t - t1) * v_back;
+    return Ballistic(at_net, {3.0, 0.5, 1.0}, t - t2);
+  };
+  for (const bool marked : {true, false}) {
+    std::vector<FrameSetResult> rows = Flight(at);
+    for (int k = 21; k <= 23; ++k) rows[k].state->between_contacts = marked;
+    int dropped = 0;
+    const std::vector<FrameSetResult> out = Check(rows, &dropped);
+    int kept = 0;
+    for (int k = 21; k <= 23; ++k) kept += out[k].measurement.has_value() ? 1 : 0;
+    if (marked) {
+      EXPECT_EQ(dropped, 0);
+      EXPECT_EQ(kept, 3);
+    } else {
+      EXPECT_GE(dropped, 2);
+      EXPECT_LE(kept, 1);
+    }
+  }
+}
+
 TEST(FlightCheck, DropsAWrongLastRowThatNothingAfterConfirms) {
   // The track coasts two sets after its last sighting, then its last row jumps 0.7 m to something
   // else of the ball's colour; no row follows. The wrong row goes, and with it every state after

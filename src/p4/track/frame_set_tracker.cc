@@ -18,6 +18,10 @@ namespace p4::track {
 
 bool FrameSetOptions::IsValid(std::string* error) const {
   if (!segment.IsValid(error) || !tracker.IsValid(error) || !initiator.IsValid(error)) return false;
+  if (!(contact_max_m >= 0.0) || !(contact_flight_max_s > 0.0)) {
+    if (error) *error = "contact_max_m must be >= 0 and contact_flight_max_s positive";
+    return false;
+  }
   if (!(bridge_span_s >= 0.0) || !(bridge_max_rms > 0.0)) {
     if (error) *error = "bridge_span_s must be >= 0 and bridge_max_rms positive";
     return false;
@@ -1025,24 +1029,117 @@ void FrameSetTracker::AdoptTracklet(const Tracklet& tracklet, FrameSetResult* re
   result->new_track = true;
 }
 
-bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
-                             std::span<const SmoothedState> smoothed, std::size_t first,
-                             TimeNs flight_t0, FrameSetResult* result) {
+const FrameSetTracker::PastSet* FrameSetTracker::FreeSetsBefore(
+    TimeNs flight_t0, const FrameSetResult& result, std::vector<const PastSet*>* between) const {
   const TimeNs hold = FromSeconds(options_.initiator.max_span_s);
   // The newest set before the flight: it must be a measured row within the hold, and every set
   // between it and the flight unmeasured and free (no row, no revision, not taken).
-  const PastSet* anchor = nullptr;
-  std::vector<const PastSet*> between;
+  between->clear();
   for (auto set = past_.rbegin(); set != past_.rend(); ++set) {
     if (set->t >= flight_t0) continue;
-    if (result->t - set->t > hold) return false;
-    if (set->measured) {
-      anchor = &*set;
-      break;
-    }
-    if (RowMadeSince(*set, *result)) return false;
-    between.push_back(&*set);
+    if (result.t - set->t > hold) return nullptr;
+    if (set->measured) return &*set;
+    if (RowMadeSince(*set, result)) return nullptr;
+    between->push_back(&*set);
   }
+  return nullptr;
+}
+
+bool FrameSetTracker::BetweenContacts(const SmoothedState& first_step, TimeNs flight_t0,
+                                      FrameSetResult* result) {
+  std::vector<const PastSet*> between;
+  const PastSet* anchor = FreeSetsBefore(flight_t0, *result, &between);
+  if (!anchor || between.size() < 2 ||
+      ToSeconds(flight_t0 - anchor->t) > options_.contact_flight_max_s) {
+    return false;
+  }
+  const KalmanOptions& kalman = tracker_options_.kalman;
+  // Each set's points of two views of the ball's size.
+  const auto points = [&](const PastSet& set) {
+    std::vector<Eigen::Vector3d> out;
+    const auto& d = set.detections;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      for (std::size_t j = i + 1; j < d.size(); ++j) {
+        if (d[i].camera == d[j].camera || d[i].still || d[j].still || d[i].cut || d[j].cut)
+          continue;
+        const Camera& a = rig_.cameras[d[i].camera];
+        const Camera& b = rig_.cameras[d[j].camera];
+        if (EpipolarDistance(a, d[i].pixel, b, d[j].pixel) > options_.epipolar_px) continue;
+        const std::vector<Observation> pair = {{d[i].camera, d[i].pixel},
+                                               {d[j].camera, d[j].pixel}};
+        const auto e = TriangulateObservations(rig_.cameras, pair, triangulation_);
+        if (!e || e->mean_reprojection_px > options_.reprojection_px) continue;
+        if (!ViewSizeFits(d[i].diameter_px, ExpectedDiameterPx(a, e->point)) ||
+            !ViewSizeFits(d[j].diameter_px, ExpectedDiameterPx(b, e->point)) ||
+            Fragment(d[i].diameter_px, ExpectedDiameterPx(a, e->point)) ||
+            Fragment(d[j].diameter_px, ExpectedDiameterPx(b, e->point))) {
+          continue;
+        }
+        out.push_back(e->point);
+      }
+    }
+    return out;
+  };
+  // Where two flights (states at times ta, tb) come nearest between times u0 and u1: the
+  // distance, and their velocities' difference there.
+  const auto meet = [&](Vector6d a, TimeNs ta, Vector6d b, TimeNs tb, TimeNs u0, TimeNs u1) {
+    CarryFlight(kalman, ToSeconds(u0 - ta), &a);
+    CarryFlight(kalman, ToSeconds(u0 - tb), &b);
+    const TimeNs step = FromSeconds(0.0005);
+    double nearest = (a.head<3>() - b.head<3>()).norm();
+    double dv = (a.tail<3>() - b.tail<3>()).norm();
+    for (TimeNs u = u0 + step; u <= u1; u += step) {
+      CarryFlight(kalman, ToSeconds(step), &a);
+      CarryFlight(kalman, ToSeconds(step), &b);
+      const double d = (a.head<3>() - b.head<3>()).norm();
+      if (d < nearest) nearest = d, dv = (a.tail<3>() - b.tail<3>()).norm();
+    }
+    return std::make_pair(nearest, dv);
+  };
+  const Eigen::Vector3d g(0.0, 0.0, -kalman.gravity);
+  double best = options_.contact_max_m;
+  std::optional<std::pair<Vector6d, TimeNs>> flight;
+  // between: newest first; each two sets in a row, the older first.
+  for (std::size_t k = between.size() - 1; k >= 1; --k) {
+    const PastSet& older = *between[k];
+    const PastSet& newer = *between[k - 1];
+    const double dt = ToSeconds(newer.t - older.t);
+    for (const Eigen::Vector3d& pa : points(older)) {
+      for (const Eigen::Vector3d& pb : points(newer)) {
+        Vector6d x;
+        x << pa, (pb - pa) / dt - 0.5 * g * dt;  // the velocity at the older set
+        if (x.tail<3>().norm() > options_.initiator.max_speed) continue;
+        const auto [d0, dv0] = meet(anchor->state, anchor->t, x, older.t, anchor->t, older.t);
+        const auto [d1, dv1] =
+            meet(x, older.t, first_step.state, first_step.t, newer.t, first_step.t);
+        const double worst = std::max(d0, d1);
+        if (worst <= best && dv0 > options_.backfill_contact_mps &&
+            dv1 > options_.backfill_contact_mps) {
+          best = worst;
+          flight = std::make_pair(x, older.t);
+        }
+      }
+    }
+  }
+  if (!flight) return false;
+  const double sigma = 0.003;
+  for (const PastSet* set : between) {
+    Vector6d x = flight->first;
+    CarryFlight(kalman, ToSeconds(set->t - flight->second), &x);
+    Revision r;
+    if (RowOnFlight(*set, x, sigma * sigma * Eigen::Matrix3d::Identity(), &r)) {
+      r.state.between_contacts = true;
+      PushRevision(std::move(r), result);
+    }
+  }
+  return true;
+}
+
+bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
+                             std::span<const SmoothedState> smoothed, std::size_t first,
+                             TimeNs flight_t0, FrameSetResult* result) {
+  std::vector<const PastSet*> between;
+  const PastSet* anchor = FreeSetsBefore(flight_t0, *result, &between);
   if (!anchor || between.empty()) return false;
   // The anchor's point, from the views its row took.
   std::vector<Observation> o;
@@ -1118,6 +1215,7 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   if (options_.bridge_span_s > 0.0 && Bridge(steps, smoothed_steps, first, flight_t0, result)) {
     return;
   }
+  if (options_.contact_max_m > 0.0 && BetweenContacts(s0, flight_t0, result)) return;
   const KalmanOptions& kalman = tracker_options_.kalman;
   // The flight carried back set by set (x, p: a backward filter). Each set of two views or more
   // that it takes corrects it, so a set further back is judged by the sets already taken, not

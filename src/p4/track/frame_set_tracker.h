@@ -306,6 +306,18 @@ struct FrameSetOptions {
   // first row after a hit, or one within the drift of it). 0 s: off.
   double bridge_span_s = 0.1;
   double bridge_max_rms = 0.005;  // m
+  // Where the bridge does not hold, a short flight between two contacts: the ball hit into the
+  // net, or onto the table's edge, flies a few sets that no tracklet can confirm (sports tuning
+  // 11 at 60 fps: 3 sets between a hit at 16.8 m/s and the net). Two sets in a row among those
+  // between, each with a point of two views of the ball's size (epipolar_px, reprojection_px,
+  // max_view_size_ratio), give a flight; where it meets the flight before (the measured row's
+  // state carried forward) and the new flight (its first step, smoothed, carried back) each
+  // within contact_max_m, their velocities apart by more than backfill_contact_mps at both
+  // meetings, the sets between take their views on it (backfill_px; one view placed where the
+  // flight crosses its ray). At most contact_flight_max_s between the row and the new flight.
+  // 0 m: off.
+  double contact_max_m = 0.02;
+  double contact_flight_max_s = 0.1;
   // Cameras segmented in parallel by this many threads (1: all on the caller's thread). Same
   // results either way; pays off for several large images searched whole.
   int threads = 1;
@@ -745,6 +757,13 @@ class FrameSetTracker {
   // within a ball's through that row and the flight's first 0.1 s), the sets between take their
   // views on that bridge, a single view placed where the bridge crosses its ray. False (nothing
   // done) where it does not hold.
+  // The short flight between two contacts (contact_max_m) over the same free sets as Bridge's.
+  bool BetweenContacts(const SmoothedState& first_step, TimeNs flight_t0, FrameSetResult* result);
+  // The newest set before flight_t0 (within the hold) if it is a measured row and every set
+  // between it and the flight is unmeasured and free: that row, and the sets between, newest
+  // first. Null when not so.
+  const PastSet* FreeSetsBefore(TimeNs flight_t0, const FrameSetResult& result,
+                                std::vector<const PastSet*>* between) const;
   bool Bridge(std::span<const FilterStep> steps, std::span<const SmoothedState> smoothed,
               std::size_t first, TimeNs flight_t0, FrameSetResult* result);
   // The indices of the set's views the track took (a measured row's) that lie within

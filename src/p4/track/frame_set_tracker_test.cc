@@ -1676,6 +1676,52 @@ TEST_F(FrameSetTrackerTest, ViewsBeforeAHitAreNotPlacedOnTheNewFlight) {
   }
 }
 
+// Two cameras at 60 fps: a flight, a hit that sends the ball back at 15 m/s, and 3 frame
+// periods later a second contact (the net) that sends it on slowly (sports tuning 11: 3 sets
+// between a hit and the net). No tracklet confirms the 3 sets between, and neither flight
+// carried over its contact passes through them; the short flight of two of their points meets
+// both flights at their contacts, and the 3 sets are rows on it (contact_max_m; 0: none).
+TEST_F(FrameSetTrackerTest, AShortFlightBetweenTwoContactsIsRows) {
+  constexpr int kHit = 20, kSets = 45;
+  const double t1 = (kHit + 0.5) / 60.0, t2 = t1 + 3.0 / 60.0;
+  const Eigen::Vector3d v_back(-15.0, 0.5, 0.5), v_on(3.0, 0.5, 1.0);
+  const auto ball = [&](double t) -> Eigen::Vector3d {
+    if (t < t1) return HitBall(t);
+    const Eigen::Vector3d at_net = HitBall(t1) + (t2 - t1) * v_back;
+    if (t < t2) return HitBall(t1) + (t - t1) * v_back;
+    const double s = t - t2;
+    return at_net + s * v_on + Eigen::Vector3d(0.0, 0.0, -4.9 * s * s);
+  };
+  for (const double contact : {FrameSetOptions{}.contact_max_m, 0.0}) {
+    FrameSetOptions options;
+    options.contact_max_m = contact;
+    const std::vector<FrameSetResult> rows =
+        HeldRows(options, kSets, 60.0, [&](int k, double t) { Frames(ball(t), k); });
+    ASSERT_EQ(rows.size(), static_cast<size_t>(kSets));
+    int between = 0;
+    double worst = 0.0;
+    for (int k = kHit + 1; k <= kHit + 3; ++k) {
+      if (!rows[k].state || !rows[k].state->measured) continue;
+      ++between;
+      worst = std::max(worst, (rows[k].state->position - ball(k / 60.0)).norm());
+      EXPECT_TRUE(rows[k].state->between_contacts) << k;
+    }
+    std::printf("contact %.3f m: %d of the 3 sets between are rows, %.1f mm off\n", contact,
+                between, 1e3 * worst);
+    if (contact > 0.0) {
+      EXPECT_EQ(between, 3);
+      EXPECT_LT(worst, 0.005);
+    } else {
+      EXPECT_EQ(between, 0);
+    }
+    // The flights on either side are rows all the same.
+    for (int k = 4; k <= kHit; ++k) EXPECT_TRUE(rows[k].state && rows[k].state->measured) << k;
+    for (int k = kHit + 8; k < kSets - 2; ++k) {
+      EXPECT_TRUE(rows[k].state && rows[k].state->measured) << k;
+    }
+  }
+}
+
 // The ball flies past the table's end, away from the net, and is hidden from set kLast + 1 on
 // (the hitter's racket and body); in sets kLast + 2 to kLast + 4 a piece of the hitter's shirt of
 // the ball's colour and size lies 15 cm below the coasting flight's path and moves on level at
@@ -1916,13 +1962,18 @@ TEST(FrameSetOptions, TheBackFillBoundIsChecked) {
                               "backfill_contact_mps");
 }
 
-TEST(FrameSetOptions, TheBridgeBoundsAreChecked) {
+TEST(FrameSetOptions, TheBridgeAndContactFlightBoundsAreChecked) {
   ExpectOffAllowedAndBadNamed(&FrameSetOptions::bridge_span_s, 0.0, -0.1, "bridge_span_s");
-  std::string why;
-  FrameSetOptions o;
-  o.bridge_max_rms = 0.0;
-  EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("bridge_max_rms"), std::string::npos) << why;
+  ExpectOffAllowedAndBadNamed(&FrameSetOptions::contact_max_m, 0.0, -0.01, "contact_max_m");
+  for (const auto& [field, name] :
+       {std::pair{&FrameSetOptions::bridge_max_rms, "bridge_max_rms"},
+        std::pair{&FrameSetOptions::contact_flight_max_s, "contact_flight_max_s"}}) {
+    std::string why;
+    FrameSetOptions o;
+    o.*field = 0.0;
+    EXPECT_FALSE(o.IsValid(&why)) << name;
+    EXPECT_NE(why.find(name), std::string::npos) << why;
+  }
 }
 
 TEST(FrameSetOptions, TheOffColourBoundIsChecked) {
