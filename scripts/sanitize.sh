@@ -4,8 +4,9 @@
 # tsan: the threaded parts under ThreadSanitizer: the camera pool (track), the live hub and the
 #       web server (server), the frame-set reader's reconnecting sources (pipeline). Builds the
 #       `tsan` preset (those tests only; about 4.5 minutes cold on 2 cores).
-# asan: every library's unit tests (core to eval) under ASan and UBSan, optimised (`asan`
-#       preset; about 12 minutes cold on 2 cores, so not in CI; 2.5 minutes to run).
+# asan: every library's unit tests (core to eval) and the segmenter's rendered scenes under
+#       ASan and UBSan, optimised (`asan` preset, those targets only; about 14 minutes cold on 2
+#       cores, so not in CI; 5.4 minutes to run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode="${1:-tsan}"
