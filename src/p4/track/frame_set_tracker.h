@@ -752,11 +752,6 @@ class FrameSetTracker {
   // knows that depth (PlaceOnRay). False for none, or views that do not meet.
   bool RowOnFlight(const PastSet& set, const Vector6d& flight, const Eigen::Matrix3d& covariance,
                    Revision* r) const;
-  // After a hit one camera may lose the ball for a few sets (against a shirt of its colour):
-  // where the measured row before the new flight lies on it (a flight of constant acceleration
-  // within a ball's through that row and the flight's first 0.1 s), the sets between take their
-  // views on that bridge, a single view placed where the bridge crosses its ray. False (nothing
-  // done) where it does not hold.
   // The short flight between two contacts (contact_max_m) over the same free sets as Bridge's.
   bool BetweenContacts(const SmoothedState& first_step, TimeNs flight_t0, FrameSetResult* result);
   // The newest set before flight_t0 (within the hold) if it is a measured row and every set
@@ -764,6 +759,11 @@ class FrameSetTracker {
   // first. Null when not so.
   const PastSet* FreeSetsBefore(TimeNs flight_t0, const FrameSetResult& result,
                                 std::vector<const PastSet*>* between) const;
+  // After a hit one camera may lose the ball for a few sets (against a shirt of its colour):
+  // where the measured row before the new flight lies on it (a flight of constant acceleration
+  // within a ball's through that row and the flight's first 0.1 s), the sets between take their
+  // views on that bridge, a single view placed where the bridge crosses its ray. False (nothing
+  // done) where it does not hold.
   bool Bridge(std::span<const FilterStep> steps, std::span<const SmoothedState> smoothed,
               std::size_t first, TimeNs flight_t0, FrameSetResult* result);
   // The indices of the set's views the track took (a measured row's) that lie within
