@@ -207,6 +207,32 @@ void CarryFlight(const KalmanOptions& kalman, double dt, Vector6d* state,
   *covariance = f * *covariance * f.transpose();
 }
 
+// Where two flights come nearest, searched from u0 to u1 (both included) in steps of `step`:
+// flight a's state at ta and b's at tb, each carried to the time. dv: a's velocity less b's
+// there (a contact, where it is large).
+struct Meeting {
+  double distance = 0.0;  // m
+  TimeNs t = 0;
+  Eigen::Vector3d dv = Eigen::Vector3d::Zero();
+};
+Meeting FlightsMeet(const KalmanOptions& kalman, Vector6d a, TimeNs ta, Vector6d b, TimeNs tb,
+                    TimeNs u0, TimeNs u1, TimeNs step) {
+  CarryFlight(kalman, ToSeconds(u0 - ta), &a);
+  CarryFlight(kalman, ToSeconds(u0 - tb), &b);
+  Meeting m{(a.head<3>() - b.head<3>()).norm(), u0, a.tail<3>() - b.tail<3>()};
+  for (TimeNs u = u0 + step; u <= u1; u += step) {
+    CarryFlight(kalman, ToSeconds(step), &a);
+    CarryFlight(kalman, ToSeconds(step), &b);
+    const double d = (a.head<3>() - b.head<3>()).norm();
+    if (d < m.distance) m = {d, u, a.tail<3>() - b.tail<3>()};
+  }
+  return m;
+}
+
+// A flight's position where the back-fill places views on it is known to this at best (m): the
+// points it was fitted to are known to millimetres.
+constexpr double kFlightSigmaFloor = 0.003;
+
 // Steps `filter` through the tracklet's points [first, last); each measured state whose
 // time-stamp `revise` accepts becomes a revision of it.
 void ReplayPoints(const Tracklet& tracklet, std::size_t first, std::size_t last,
@@ -1054,14 +1080,15 @@ bool FrameSetTracker::BetweenContacts(const SmoothedState& first_step, TimeNs fl
     return false;
   }
   const KalmanOptions& kalman = tracker_options_.kalman;
-  // Each set's points of two views of the ball's size.
-  const auto points = [&](const PastSet& set) {
-    std::vector<Eigen::Vector3d> out;
-    const auto& d = set.detections;
+  // Each set's points of two views of the ball's size (as between[]: newest first).
+  std::vector<std::vector<Eigen::Vector3d>> points(between.size());
+  for (std::size_t s = 0; s < between.size(); ++s) {
+    const auto& d = between[s]->detections;
     for (std::size_t i = 0; i < d.size(); ++i) {
       for (std::size_t j = i + 1; j < d.size(); ++j) {
-        if (d[i].camera == d[j].camera || d[i].still || d[j].still || d[i].cut || d[j].cut)
+        if (d[i].camera == d[j].camera || d[i].still || d[j].still || d[i].cut || d[j].cut) {
           continue;
+        }
         const Camera& a = rig_.cameras[d[i].camera];
         const Camera& b = rig_.cameras[d[j].camera];
         if (EpipolarDistance(a, d[i].pixel, b, d[j].pixel) > options_.epipolar_px) continue;
@@ -1069,52 +1096,38 @@ bool FrameSetTracker::BetweenContacts(const SmoothedState& first_step, TimeNs fl
                                                {d[j].camera, d[j].pixel}};
         const auto e = TriangulateObservations(rig_.cameras, pair, triangulation_);
         if (!e || e->mean_reprojection_px > options_.reprojection_px) continue;
-        if (!ViewSizeFits(d[i].diameter_px, ExpectedDiameterPx(a, e->point)) ||
-            !ViewSizeFits(d[j].diameter_px, ExpectedDiameterPx(b, e->point)) ||
-            Fragment(d[i].diameter_px, ExpectedDiameterPx(a, e->point)) ||
-            Fragment(d[j].diameter_px, ExpectedDiameterPx(b, e->point))) {
+        const double expected_a = ExpectedDiameterPx(a, e->point);
+        const double expected_b = ExpectedDiameterPx(b, e->point);
+        if (!ViewSizeFits(d[i].diameter_px, expected_a) ||
+            !ViewSizeFits(d[j].diameter_px, expected_b) || Fragment(d[i].diameter_px, expected_a) ||
+            Fragment(d[j].diameter_px, expected_b)) {
           continue;
         }
-        out.push_back(e->point);
+        points[s].push_back(e->point);
       }
     }
-    return out;
-  };
-  // Where two flights (states at times ta, tb) come nearest between times u0 and u1: the
-  // distance, and their velocities' difference there.
-  const auto meet = [&](Vector6d a, TimeNs ta, Vector6d b, TimeNs tb, TimeNs u0, TimeNs u1) {
-    CarryFlight(kalman, ToSeconds(u0 - ta), &a);
-    CarryFlight(kalman, ToSeconds(u0 - tb), &b);
-    const TimeNs step = FromSeconds(0.0005);
-    double nearest = (a.head<3>() - b.head<3>()).norm();
-    double dv = (a.tail<3>() - b.tail<3>()).norm();
-    for (TimeNs u = u0 + step; u <= u1; u += step) {
-      CarryFlight(kalman, ToSeconds(step), &a);
-      CarryFlight(kalman, ToSeconds(step), &b);
-      const double d = (a.head<3>() - b.head<3>()).norm();
-      if (d < nearest) nearest = d, dv = (a.tail<3>() - b.tail<3>()).norm();
-    }
-    return std::make_pair(nearest, dv);
-  };
+  }
+  const TimeNs step = FromSeconds(0.0005);
   const Eigen::Vector3d g(0.0, 0.0, -kalman.gravity);
   double best = options_.contact_max_m;
   std::optional<std::pair<Vector6d, TimeNs>> flight;
-  // between: newest first; each two sets in a row, the older first.
+  // Each two sets in a row, the older first.
   for (std::size_t k = between.size() - 1; k >= 1; --k) {
     const PastSet& older = *between[k];
     const PastSet& newer = *between[k - 1];
     const double dt = ToSeconds(newer.t - older.t);
-    for (const Eigen::Vector3d& pa : points(older)) {
-      for (const Eigen::Vector3d& pb : points(newer)) {
+    for (const Eigen::Vector3d& pa : points[k]) {
+      for (const Eigen::Vector3d& pb : points[k - 1]) {
         Vector6d x;
         x << pa, (pb - pa) / dt - 0.5 * g * dt;  // the velocity at the older set
         if (x.tail<3>().norm() > options_.initiator.max_speed) continue;
-        const auto [d0, dv0] = meet(anchor->state, anchor->t, x, older.t, anchor->t, older.t);
-        const auto [d1, dv1] =
-            meet(x, older.t, first_step.state, first_step.t, newer.t, first_step.t);
-        const double worst = std::max(d0, d1);
-        if (worst <= best && dv0 > options_.backfill_contact_mps &&
-            dv1 > options_.backfill_contact_mps) {
+        const Meeting with_before =
+            FlightsMeet(kalman, anchor->state, anchor->t, x, older.t, anchor->t, older.t, step);
+        const Meeting with_new = FlightsMeet(kalman, x, older.t, first_step.state, first_step.t,
+                                             newer.t, first_step.t, step);
+        const double worst = std::max(with_before.distance, with_new.distance);
+        if (worst <= best && with_before.dv.norm() > options_.backfill_contact_mps &&
+            with_new.dv.norm() > options_.backfill_contact_mps) {
           best = worst;
           flight = std::make_pair(x, older.t);
         }
@@ -1122,7 +1135,7 @@ bool FrameSetTracker::BetweenContacts(const SmoothedState& first_step, TimeNs fl
     }
   }
   if (!flight) return false;
-  const double sigma = 0.003;
+  const double sigma = kFlightSigmaFloor;
   for (const PastSet* set : between) {
     Vector6d x = flight->first;
     CarryFlight(kalman, ToSeconds(set->t - flight->second), &x);
@@ -1183,7 +1196,7 @@ bool FrameSetTracker::Bridge(std::span<const FilterStep> steps,
   if (rms > options_.bridge_max_rms || (acc - g).norm() > most + 2.0) return false;
   // Each set between: its views within backfill_px of the bridge there; one view placed on its
   // ray where the bridge crosses it.
-  const double sigma = std::max(rms, 0.003);
+  const double sigma = std::max(rms, kFlightSigmaFloor);
   for (const PastSet* set : between) {
     Revision r;
     if (RowOnFlight(*set, on_bridge(ToSeconds(set->t - anchor->t)),
@@ -1249,20 +1262,11 @@ void FrameSetTracker::BackFill(std::span<const FilterStep> steps, TimeNs flight_
   // are dropped.
   const auto ends_at_other_flight = [&](const PastSet& set) {
     if (!(options_.backfill_contact_mps > 0.0) || !set.measured || placed.empty()) return;
-    Vector6d before = set.state, after = x;
-    CarryFlight(kalman, ToSeconds(set.t - at), &after);
-    const TimeNs step = FromSeconds(0.001);
-    TimeNs contact = set.t;
-    double nearest = (before.head<3>() - after.head<3>()).norm();
-    Eigen::Vector3d dv = before.tail<3>() - after.tail<3>();
-    for (TimeNs u = set.t + step; u < flight_t0; u += step) {
-      CarryFlight(kalman, ToSeconds(step), &before);
-      CarryFlight(kalman, ToSeconds(step), &after);
-      const double d = (before.head<3>() - after.head<3>()).norm();
-      if (d < nearest) nearest = d, contact = u, dv = before.tail<3>() - after.tail<3>();
-    }
-    if (dv.norm() <= options_.backfill_contact_mps) return;
-    std::erase_if(placed, [&](const Revision& r) { return r.t < contact; });
+    // (Up to the flight's first point, not at it.)
+    const Meeting contact =
+        FlightsMeet(kalman, set.state, set.t, x, at, set.t, flight_t0 - 1, FromSeconds(0.001));
+    if (contact.dv.norm() <= options_.backfill_contact_mps) return;
+    std::erase_if(placed, [&](const Revision& r) { return r.t < contact.t; });
   };
   // Whether two views of `set` the track took lie on the flight there.
   const auto on_flight = [&](const PastSet& set) {
