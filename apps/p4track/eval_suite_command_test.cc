@@ -59,8 +59,7 @@ TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
       EXPECT_GE(findable["camera_found"][c].get<int>(),
                 0.8 * findable["camera_seen"][c].get<int>());
       // What the whole-image finder also finds is a part of what the search finds.
-      EXPECT_LE(findable["camera_started"][c].get<int>(),
-                findable["camera_found"][c].get<int>());
+      EXPECT_LE(findable["camera_started"][c].get<int>(), findable["camera_found"][c].get<int>());
     }
     EXPECT_LE(findable["frames_startable"].get<int>(), findable["frames_findable"].get<int>());
     EXPECT_NEAR(findable["startable_share"].get<double>(),
@@ -80,6 +79,17 @@ TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
   // The summary rows: one per family, with the target judged.
   ASSERT_EQ(suite["summary"].size(), 2u);
   EXPECT_TRUE(suite["summary"][0]["target_met"].is_boolean());
+  // ...and the scenes meeting each of the family's targets, from their own figures (the white
+  // family has no RMSE bound).
+  const auto& sports_met = suite["summary"][0]["scenes_meeting"];
+  EXPECT_EQ(sports_met["scenes"].get<int>(), 1);
+  EXPECT_EQ(sports_met["all"].get<int>(), 1);
+  const auto& white_met = suite["summary"][1]["scenes_meeting"];
+  EXPECT_EQ(white_met["recall"].get<int>(), white["recall"].get<double>() >= 0.98 ? 1 : 0);
+  EXPECT_EQ(white_met["false_positive_rate"].get<int>(), 1);
+  EXPECT_FALSE(white_met.contains("rmse"));
+  EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("recall 1, FP 1, RMSE 1, all 1 of 1"),
+            std::string::npos);
   EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("| sports | tuning |"), std::string::npos);
   EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("findable %"), std::string::npos);
   fs::remove_all(out);

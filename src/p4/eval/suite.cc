@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -243,6 +244,75 @@ double BallPixels(const Rig& rig, const std::vector<TruthRow>& truth) {
     smallest = smallest == 0.0 ? median : std::min(smallest, median);
   }
   return smallest;
+}
+
+SuiteTarget TargetOf(const std::string& family) {
+  if (family == "sports") return {0.99, 0.005, 5.0, 3.0};
+  if (family == "webcam") return {0.95, 1.0, 15.0, 1e9};
+  if (family == "white") return {0.98, 0.01, 1e9, 1e9};
+  if (family == "mono") return {0.0, 1.0, 50.0, 1e9};
+  if (family == "unsync") return {0.99, 1.0, 5.0, 1e9, 0.5, 1.1};
+  if (family == "unsync-webcam") return {0.0, 1.0, 15.0, 1e9, 0.5};
+  if (family == "phone") return {0.0, 1.0, 1e9, 1e9, 0.5, 1.5};
+  throw Error(fmt::format("no targets for family '{}' (families: {})", family,
+                          fmt::join(SuiteFamilies(), ", ")));
+}
+
+namespace {
+
+// Which per-scene bounds of a target apply: recall, false rows, RMSE, sync, twin.
+std::array<bool, 5> Applies(const SuiteTarget& t) {
+  return {t.min_recall > 0.0, t.max_fp < 1.0, t.max_rmse_mm < 1e9, t.max_sync_ms < 1e9,
+          t.max_twin_ratio < 1e9};
+}
+
+}  // namespace
+
+void CountTargetsMet(const SuiteTarget& target, const SceneFigures& scene, TargetCounts* counts) {
+  ++counts->scenes;
+  if (!scene.evaluated) return;
+  const auto at_most = [](const std::optional<double>& v, double bound) {
+    return v && *v <= bound;
+  };
+  const std::array<bool, 5> met = {
+      scene.recall && *scene.recall >= target.min_recall,
+      at_most(scene.false_positive_rate, target.max_fp), at_most(scene.rmse_mm, target.max_rmse_mm),
+      at_most(scene.sync_ms, target.max_sync_ms), at_most(scene.twin_ratio, target.max_twin_ratio)};
+  const std::array<int*, 5> count = {&counts->recall, &counts->fp, &counts->rmse, &counts->sync,
+                                     &counts->twin};
+  const std::array<bool, 5> applies = Applies(target);
+  bool all = true;
+  for (std::size_t i = 0; i < met.size(); ++i) {
+    if (!applies[i]) continue;
+    if (met[i]) ++*count[i];
+    all = all && met[i];
+  }
+  if (all) ++counts->all;
+}
+
+std::string TargetCounts::Describe(const SuiteTarget& target) const {
+  const std::array<bool, 5> applies = Applies(target);
+  const std::array<const char*, 5> names = {"recall", "FP", "RMSE", "sync", "twin"};
+  const std::array<int, 5> values = {recall, fp, rmse, sync, twin};
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (applies[i]) parts.push_back(fmt::format("{} {}", names[i], values[i]));
+  }
+  if (parts.size() > 1) parts.push_back(fmt::format("all {}", all));
+  return fmt::format("{} of {}", fmt::join(parts, ", "), scenes);
+}
+
+nlohmann::ordered_json TargetCounts::ToJson(const SuiteTarget& target) const {
+  const std::array<bool, 5> applies = Applies(target);
+  const std::array<const char*, 5> names = {"recall", "false_positive_rate", "rmse", "sync",
+                                            "twin_ratio"};
+  const std::array<int, 5> values = {recall, fp, rmse, sync, twin};
+  nlohmann::ordered_json out = {{"scenes", scenes}};
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (applies[i]) out[names[i]] = values[i];
+  }
+  out["all"] = all;
+  return out;
 }
 
 }  // namespace p4

@@ -28,6 +28,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,35 @@ SuiteScene DrawSuiteScene(const std::string& family, const std::string& set, int
 
 // Seed of scene k of a set (see above).
 uint64_t SuiteSeed(const std::string& set, int k);
+
+// The README's targets of a family (issues "See the ball in any hall", "Cameras that are not in
+// step"): per scene (recall, false rows, RMSE, the worst camera's clock error, RMSE over the
+// twin's) and over the family's scenes (the median RMSE). A bound at its default does not apply.
+struct SuiteTarget {
+  double min_recall = 0.0, max_fp = 1.0, max_rmse_mm = 1e9, max_median_rmse_mm = 1e9;
+  double max_sync_ms = 1e9;     // the worst camera's clock error at the middle of the play
+  double max_twin_ratio = 1e9;  // RMSE over the twin's (the same play in step / global shutter)
+};
+
+// Throws p4::Error for an unknown family.
+SuiteTarget TargetOf(const std::string& family);
+
+// One scene's figures; a figure the scene does not have is empty (an RMSE with no measured row,
+// a sync that was refused or a twin with no RMSE count as missing their targets).
+struct SceneFigures {
+  bool evaluated = false;  // false: the scene failed before its figures
+  std::optional<double> rmse_mm, recall, false_positive_rate, sync_ms, twin_ratio;
+};
+
+// How many scenes meet each per-scene target that applies (the others stay 0), and all of them.
+struct TargetCounts {
+  int scenes = 0;
+  int recall = 0, fp = 0, rmse = 0, sync = 0, twin = 0, all = 0;
+  // "recall 40, RMSE 41, FP 46, all three 34" for the targets that apply.
+  std::string Describe(const SuiteTarget& target) const;
+  nlohmann::ordered_json ToJson(const SuiteTarget& target) const;
+};
+void CountTargetsMet(const SuiteTarget& target, const SceneFigures& scene, TargetCounts* counts);
 
 // The ball's diameter in pixels as a scene's cameras see it: per camera the median over the
 // truth rows in play with the ball in the picture, then the smallest of the cameras (0 when no

@@ -69,6 +69,53 @@ TEST(Suite, OutOfStepScenesAndTheirTwins) {
   EXPECT_EQ(DrawSuiteScene("unsync-webcam", "tuning", 1).width, 640);
 }
 
+// The scenes meeting each of a family's per-scene targets, as the README counts them: a scene
+// with no measured row misses the RMSE, a refused sync the sync, a scene that failed every one.
+TEST(Suite, ScenesMeetingEachTargetAreCounted) {
+  const SuiteTarget sports = TargetOf("sports");
+  TargetCounts counts;
+  SceneFigures good;
+  good.evaluated = true;
+  good.rmse_mm = 2.0, good.recall = 0.995, good.false_positive_rate = 0.0;
+  CountTargetsMet(sports, good, &counts);
+  SceneFigures low_recall = good;
+  low_recall.recall = 0.985;  // and 6 mm: two targets missed, one scene
+  low_recall.rmse_mm = 6.0;
+  CountTargetsMet(sports, low_recall, &counts);
+  SceneFigures no_rows = good;
+  no_rows.rmse_mm.reset();
+  no_rows.false_positive_rate = 0.006;
+  CountTargetsMet(sports, no_rows, &counts);
+  CountTargetsMet(sports, SceneFigures{}, &counts);  // failed before its figures
+  EXPECT_EQ(counts.scenes, 4);
+  EXPECT_EQ(counts.recall, 2);
+  EXPECT_EQ(counts.rmse, 1);
+  EXPECT_EQ(counts.fp, 2);
+  EXPECT_EQ(counts.all, 1);
+  EXPECT_EQ(counts.Describe(sports), "recall 2, FP 2, RMSE 1, all 1 of 4");
+  EXPECT_EQ(counts.ToJson(sports).dump(),
+            R"({"scenes":4,"recall":2,"false_positive_rate":2,"rmse":1,"all":1})");
+
+  // Phones: only the clock and the twin count (no recall, false-row or RMSE bound).
+  const SuiteTarget phone = TargetOf("phone");
+  TargetCounts phones;
+  SceneFigures synced;
+  synced.evaluated = true;
+  synced.recall = 0.5, synced.rmse_mm = 40.0, synced.false_positive_rate = 0.2;
+  synced.sync_ms = 0.3, synced.twin_ratio = 1.2;
+  CountTargetsMet(phone, synced, &phones);
+  SceneFigures refused = synced;
+  refused.sync_ms.reset();
+  refused.twin_ratio = 1.6;
+  CountTargetsMet(phone, refused, &phones);
+  EXPECT_EQ(phones.Describe(phone), "sync 1, twin 1, all 1 of 2");
+  // One target alone: no "all".
+  TargetCounts mono;
+  CountTargetsMet(TargetOf("mono"), good, &mono);
+  EXPECT_EQ(mono.Describe(TargetOf("mono")), "RMSE 1 of 1");
+  EXPECT_THROW(TargetOf("indoor"), Error);
+}
+
 TEST(Suite, BallPixelsIsTheSmallestCamerasMedianDiameter) {
   Rig rig;
   rig.cameras = {testing::MakeCamera("near", {0.0, -3.0, 0.0}),
