@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,6 +19,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <tuple>
 
 #include "commands.h"
 #include "p4/core/error.h"
@@ -184,6 +186,17 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
                 {"lamps", look["lamps"].size()},
                 {"spare_ball", look.contains("spare_ball")},
                 {"drift", look["drift"]}};
+    const auto rgb = [&](const char* key) -> std::optional<Eigen::Vector3d> {
+      const auto& c = look.contains(key) ? look[key] : nlohmann::json();
+      if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() ||
+          !c[2].is_number()) {
+        return std::nullopt;
+      }
+      return Eigen::Vector3d(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
+    };
+    if (const auto floor = rgb("floor"), ball = rgb("ball"); floor && ball) {
+      out.look["floor_of_balls_hue"] = FloorHasBallsHue(*floor, *ball);
+    }
   }
   std::vector<std::string> track = {"track",
                                     "--rig",
@@ -263,6 +276,10 @@ int Run(const SuiteArgs& a) {
     const Outcome outcome = SimulateTrackEvaluate(scene, dir, "", a, {}, false);
     if (outcome.ball_px >= 0.0) row["ball_px"] = std::round(outcome.ball_px * 10.0) / 10.0;
     if (!outcome.look.is_null()) row["look"] = outcome.look;
+    const auto floor_hue = outcome.look.contains("floor_of_balls_hue")
+                               ? std::optional(outcome.look["floor_of_balls_hue"].get<bool>())
+                               : std::nullopt;
+    row["groups"] = SceneGroups(scene, std::max(0.0, outcome.ball_px), floor_hue);
     if (outcome.findable) {
       const FindableReport& f = *outcome.findable;
       row["findable"] = {{"share", std::round(f.share() * 1e5) / 1e5},
@@ -340,8 +357,12 @@ int Run(const SuiteArgs& a) {
     spdlog::debug("scene {}/{} done", index, scenes.size());
   }
 
-  // Per family and set: the worst scene and the median, against the family's target.
+  // Per family and set: the worst scene and the median, against the family's target; and the
+  // scenes meeting each target by group (cameras, rate, exposure, ball size and colour, floor).
   nlohmann::ordered_json summary = nlohmann::ordered_json::array();
+  nlohmann::ordered_json groups_json = nlohmann::ordered_json::array();
+  std::string group_report =
+      "\n| family | set | group | scenes meeting each target |\n| --- | --- | --- | --- |\n";
   std::string report =
       "\n| family | set | scenes | RMSE mm worst / median | recall % worst / median | FP % worst / "
       "median | sync ms worst / median | RMSE / twin's worst | scenes meeting each target | "
@@ -352,11 +373,25 @@ int Run(const SuiteArgs& a) {
       int failed = 0;
       const SuiteTarget target = TargetOf(family);
       TargetCounts counts;
+      // Groups in the order of SceneGroups' axes, and by value within an axis ("under" first).
+      using GroupKey = std::tuple<std::size_t, double, std::string>;
+      std::map<GroupKey, TargetCounts> by_group;
+      const auto key = [](const nlohmann::json& groups, std::size_t axis) -> GroupKey {
+        const std::string name = groups[axis].get<std::string>();
+        const auto digit = name.find_first_of("0123456789");
+        const double value = name.rfind("under", 0) == 0  ? -1.0
+                             : digit == std::string::npos ? 0.0
+                                                          : std::atof(name.c_str() + digit);
+        return {axis, value, name};
+      };
       for (const auto& row : results) {
         if (row["axes"]["family"] != family || row["axes"]["set"] != set) continue;
         if (!row.contains("figures")) {
           ++failed;
           CountTargetsMet(target, {}, &counts);
+          for (std::size_t g = 0; g < row["groups"].size(); ++g) {
+            CountTargetsMet(target, {}, &by_group[key(row["groups"], g)]);
+          }
           continue;
         }
         // A scene without a measured row has no error to show: it counts as the worst.
@@ -383,8 +418,20 @@ int Run(const SuiteArgs& a) {
         if (row.contains("sync_ms")) scene.sync_ms = known(sync.back());
         if (row.contains("twin")) scene.twin_ratio = known(ratio.back());
         CountTargetsMet(target, scene, &counts);
+        for (std::size_t g = 0; g < row["groups"].size(); ++g) {
+          CountTargetsMet(target, scene, &by_group[key(row["groups"], g)]);
+        }
       }
       if (rmse.empty() && failed == 0) continue;
+      for (const auto& [group_key, group_counts] : by_group) {
+        const std::string& group = std::get<2>(group_key);
+        group_report += fmt::format("| {} | {} | {} | {} |\n", family, set, group,
+                                    group_counts.Describe(target));
+        groups_json.push_back({{"family", family},
+                               {"set", set},
+                               {"group", group},
+                               {"scenes_meeting", group_counts.ToJson(target)}});
+      }
       const auto worst = [](const std::vector<double>& v, double none) {
         return v.empty() ? none : *std::max_element(v.begin(), v.end());
       };
@@ -430,12 +477,13 @@ int Run(const SuiteArgs& a) {
           counts.Describe(target), met ? "met" : "missed");
     }
   }
+  report += group_report;
   if (a.findable) report += findable_table;
   std::cout << report << std::flush;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const nlohmann::ordered_json out = {
-      {"scenes", results}, {"summary", summary}, {"seconds", seconds}};
+      {"scenes", results}, {"summary", summary}, {"by_group", groups_json}, {"seconds", seconds}};
   std::ofstream json_file(fs::path(a.out) / "suite.json");
   json_file << out.dump(2) << '\n';
   std::ofstream md_file(fs::path(a.out) / "suite.md");

@@ -4,6 +4,8 @@
 // benchmark whose figures are in the README.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -91,6 +93,21 @@ TEST(EvalSuiteCommand, SimulatesTracksAndEvaluatesSeededScenes) {
   EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("recall 1, FP 1, RMSE 1, all 1 of 1"),
             std::string::npos);
   EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("| sports | tuning |"), std::string::npos);
+  // The breakdown: each scene in one group per axis (its look known: the floor's hue too), and
+  // each group of a family and set counting its one scene.
+  for (const auto& scene : suite["scenes"]) {
+    ASSERT_EQ(scene["groups"].size(), 6u) << scene.dump();
+    for (const auto& group : scene["groups"]) {
+      const auto& groups = suite["by_group"];
+      const auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+        return g["family"] == scene["axes"]["family"] && g["group"] == group;
+      });
+      ASSERT_NE(it, groups.end()) << group;
+      EXPECT_EQ((*it)["scenes_meeting"]["scenes"].get<int>(), 1);
+    }
+  }
+  EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("| family | set | group |"),
+            std::string::npos);
   EXPECT_NE(p4::testing::Slurp(out / "suite.md").find("findable %"), std::string::npos);
   fs::remove_all(out);
 }

@@ -315,4 +315,49 @@ nlohmann::ordered_json TargetCounts::ToJson(const SuiteTarget& target) const {
   return out;
 }
 
+bool FloorHasBallsHue(const Eigen::Vector3d& floor, const Eigen::Vector3d& ball) {
+  // Hue in degrees and saturation of an RGB colour (HSV).
+  const auto hue_saturation = [](const Eigen::Vector3d& c) {
+    const double hi = c.maxCoeff(), lo = c.minCoeff(), d = hi - lo;
+    double hue = 0.0;
+    if (d > 0.0) {
+      if (hi == c.x()) {
+        hue = std::fmod((c.y() - c.z()) / d + 6.0, 6.0);
+      } else if (hi == c.y()) {
+        hue = (c.z() - c.x()) / d + 2.0;
+      } else {
+        hue = (c.x() - c.y()) / d + 4.0;
+      }
+    }
+    return std::pair{60.0 * hue, hi > 0.0 ? d / hi : 0.0};
+  };
+  const auto [floor_hue, floor_saturation] = hue_saturation(floor);
+  const auto [ball_hue, ball_saturation] = hue_saturation(ball);
+  const double apart = std::abs(floor_hue - ball_hue);
+  return ball_saturation > 0.0 && floor_saturation > 0.4 && std::min(apart, 360.0 - apart) < 25.0;
+}
+
+std::vector<std::string> SceneGroups(const SuiteScene& scene, double ball_px,
+                                     std::optional<bool> floor_has_balls_hue) {
+  const auto band = [](double v, std::initializer_list<double> edges, const char* unit) {
+    double below = 0.0;
+    for (const double edge : edges) {
+      if (v < edge) {
+        return below == 0.0 ? fmt::format("under {:g} {}", edge, unit)
+                            : fmt::format("{:g}-{:g} {}", below, edge, unit);
+      }
+      below = edge;
+    }
+    return fmt::format("{:g} {} and over", below, unit);
+  };
+  std::vector<std::string> groups = {
+      fmt::format("{} camera{}", scene.cameras, scene.cameras == 1 ? "" : "s"),
+      fmt::format("{} fps", scene.fps), "exposure " + band(scene.exposure_ms, {1, 2, 4, 10}, "ms"),
+      "ball " + band(ball_px, {6, 10, 15}, "px"), scene.ball + " ball"};
+  if (floor_has_balls_hue) {
+    groups.push_back(*floor_has_balls_hue ? "floor of the ball's hue" : "floor of another hue");
+  }
+  return groups;
+}
+
 }  // namespace p4

@@ -26,6 +26,7 @@
 // Pure: no files, clocks or processes.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -112,6 +113,17 @@ struct TargetCounts {
   nlohmann::ordered_json ToJson(const SuiteTarget& target) const;
 };
 void CountTargetsMet(const SuiteTarget& target, const SceneFigures& scene, TargetCounts* counts);
+
+// Whether a hall's floor has its ball's hue: hues within 25 degrees and the floor's saturation
+// over 0.4 (red-brown and brown floors under an orange ball), where the ball's shaded half has
+// the floor's colour (docs/DECISIONS.md, "Detection"). Colours RGB in [0, 1].
+bool FloorHasBallsHue(const Eigen::Vector3d& floor, const Eigen::Vector3d& ball);
+
+// The groups a scene falls in, for the breakdown of a family's scenes: its cameras, frame rate,
+// exposure band (under 1 ms, 1-2, 2-4, 4-10, over 10), ball size band (under 6 px, 6-10, 10-15,
+// 15 and over), ball colour and, where known, whether the floor has the ball's hue.
+std::vector<std::string> SceneGroups(const SuiteScene& scene, double ball_px,
+                                     std::optional<bool> floor_has_balls_hue);
 
 // The ball's diameter in pixels as a scene's cameras see it: per camera the median over the
 // truth rows in play with the ball in the picture, then the smallest of the cameras (0 when no

@@ -116,6 +116,31 @@ TEST(Suite, ScenesMeetingEachTargetAreCounted) {
   EXPECT_THROW(TargetOf("indoor"), Error);
 }
 
+// The groups of the breakdown: a floor of the ball's hue (sports tuning 56's red-brown under an
+// orange ball, 57's brown), not a light grey, a blue or a red-brown under a yellow ball.
+TEST(Suite, ScenesAreGroupedByRigAndLook) {
+  const Eigen::Vector3d orange(0.983, 0.326, 0.060);
+  EXPECT_TRUE(FloorHasBallsHue({0.503, 0.201, 0.108}, orange));
+  EXPECT_TRUE(FloorHasBallsHue({0.516, 0.357, 0.209}, {0.988, 0.529, 0.061}));
+  EXPECT_FALSE(FloorHasBallsHue({0.66, 0.66, 0.63}, orange));
+  EXPECT_FALSE(FloorHasBallsHue({0.10, 0.20, 0.50}, orange));
+  EXPECT_FALSE(FloorHasBallsHue({0.503, 0.201, 0.108}, {0.95, 0.85, 0.10}));  // yellow
+  EXPECT_FALSE(FloorHasBallsHue({0.503, 0.201, 0.108}, {0.9, 0.9, 0.9}));     // white
+
+  SuiteScene scene;
+  scene.cameras = 2, scene.fps = 60, scene.exposure_ms = 3.1, scene.ball = "orange";
+  EXPECT_EQ(SceneGroups(scene, 11.7, true),
+            (std::vector<std::string>{"2 cameras", "60 fps", "exposure 2-4 ms", "ball 10-15 px",
+                                      "orange ball", "floor of the ball's hue"}));
+  scene.cameras = 1, scene.exposure_ms = 0.8;
+  EXPECT_EQ(SceneGroups(scene, 16.0, false),
+            (std::vector<std::string>{"1 camera", "60 fps", "exposure under 1 ms",
+                                      "ball 15 px and over", "orange ball",
+                                      "floor of another hue"}));
+  EXPECT_EQ(SceneGroups(scene, 4.0, std::nullopt).size(), 5u);
+  EXPECT_EQ(SceneGroups(scene, 4.0, std::nullopt)[3], "ball under 6 px");
+}
+
 TEST(Suite, BallPixelsIsTheSmallestCamerasMedianDiameter) {
   Rig rig;
   rig.cameras = {testing::MakeCamera("near", {0.0, -3.0, 0.0}),
