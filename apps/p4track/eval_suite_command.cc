@@ -46,8 +46,25 @@ struct SuiteArgs {
   std::string ball = "auto";
   std::string readout = "found";  // rolling shutter: found from the ball, or known (the rig's)
   std::vector<std::string> track_args;
-  bool findable = false;  // each scene's findable share (eval/findable.h), from its videos
+  bool findable = false;           // each scene's findable share (eval/findable.h), from its videos
+  std::vector<std::string> merge;  // suites already run: summarised as one, nothing run
 };
+
+// Whether a scene's look (its sim/look.json) has a floor of the ball's hue; empty when the look
+// does not give both colours.
+std::optional<bool> FloorHueOf(const nlohmann::json& look) {
+  const auto rgb = [&](const char* key) -> std::optional<Eigen::Vector3d> {
+    const auto& c = look.is_object() && look.contains(key) ? look[key] : nlohmann::json();
+    if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() ||
+        !c[2].is_number()) {
+      return std::nullopt;
+    }
+    return Eigen::Vector3d(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
+  };
+  const auto floor = rgb("floor"), ball = rgb("ball");
+  if (!floor || !ball) return std::nullopt;
+  return FloorHasBallsHue(*floor, *ball);
+}
 
 // Runs this program with `args`, its output into `log`; the exit code (-1 when it did not run).
 int RunSelf(const std::vector<std::string>& args, const std::string& log) {
@@ -186,17 +203,7 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
                 {"lamps", look["lamps"].size()},
                 {"spare_ball", look.contains("spare_ball")},
                 {"drift", look["drift"]}};
-    const auto rgb = [&](const char* key) -> std::optional<Eigen::Vector3d> {
-      const auto& c = look.contains(key) ? look[key] : nlohmann::json();
-      if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() ||
-          !c[2].is_number()) {
-        return std::nullopt;
-      }
-      return Eigen::Vector3d(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
-    };
-    if (const auto floor = rgb("floor"), ball = rgb("ball"); floor && ball) {
-      out.look["floor_of_balls_hue"] = FloorHasBallsHue(*floor, *ball);
-    }
+    if (const auto floor_hue = FloorHueOf(look)) out.look["floor_of_balls_hue"] = *floor_hue;
   }
   std::vector<std::string> track = {"track",
                                     "--rig",
@@ -236,7 +243,205 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
   return out;
 }
 
+// Per family and set (in the order given): the worst scene and the median, against the family's
+// target; and the scenes meeting each target, also by group (each row's "groups").
+struct Summary {
+  nlohmann::ordered_json summary = nlohmann::ordered_json::array();
+  nlohmann::ordered_json by_group = nlohmann::ordered_json::array();
+  std::string report;  // markdown: the summary table, then the groups' table
+};
+
+Summary Summarize(const nlohmann::ordered_json& results, const std::vector<std::string>& families,
+                  const std::vector<std::string>& sets) {
+  Summary out;
+  nlohmann::ordered_json& summary = out.summary;
+  nlohmann::ordered_json& groups_json = out.by_group;
+  std::string group_report =
+      "\n| family | set | group | scenes meeting each target |\n| --- | --- | --- | --- |\n";
+  std::string report =
+      "\n| family | set | scenes | RMSE mm worst / median | recall % worst / median | FP % worst / "
+      "median | sync ms worst / median | RMSE / twin's worst | scenes meeting each target | "
+      "target |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& family : families) {
+    for (const auto& set : sets) {
+      std::vector<double> rmse, recall, fp, sync, ratio;
+      int failed = 0;
+      const SuiteTarget target = TargetOf(family);
+      TargetCounts counts;
+      // Groups in the order of SceneGroups' axes, and by value within an axis ("under" first).
+      using GroupKey = std::tuple<std::size_t, double, std::string>;
+      std::map<GroupKey, TargetCounts> by_group;
+      const auto key = [](const nlohmann::json& groups, std::size_t axis) -> GroupKey {
+        const std::string name = groups[axis].get<std::string>();
+        const auto digit = name.find_first_of("0123456789");
+        const double value = name.find(" under ") != std::string::npos ? -1.0
+                             : digit == std::string::npos              ? 0.0
+                                                          : std::atof(name.c_str() + digit);
+        return {axis, value, name};
+      };
+      for (const auto& row : results) {
+        if (row["axes"]["family"] != family || row["axes"]["set"] != set) continue;
+        if (!row.contains("figures")) {
+          ++failed;
+          CountTargetsMet(target, {}, &counts);
+          for (std::size_t g = 0; g < row["groups"].size(); ++g) {
+            CountTargetsMet(target, {}, &by_group[key(row["groups"], g)]);
+          }
+          continue;
+        }
+        // A scene without a measured row has no error to show: it counts as the worst.
+        const double r = Measured(row) ? row["figures"].value("position_rmse_mm", kNone) : kNone;
+        rmse.push_back(r);
+        recall.push_back(row["figures"].value("recall", 0.0));
+        fp.push_back(row["figures"].value("false_positive_rate", 1.0));
+        if (row.contains("sync_ms")) {
+          sync.push_back(row["sync_ms"].is_null() ? kNone : row["sync_ms"].get<double>());
+        }
+        if (row.contains("twin")) {
+          const auto& twin = row["twin"];
+          const double t = twin.contains("figures") && Measured(twin)
+                               ? twin["figures"].value("position_rmse_mm", kNone)
+                               : kNone;
+          ratio.push_back(r >= kNone || t >= kNone || t <= 0.0 ? kNone : r / t);
+        }
+        const auto known = [](double v) { return v >= kNone ? std::nullopt : std::optional(v); };
+        SceneFigures scene;
+        scene.evaluated = true;
+        scene.rmse_mm = known(r);
+        scene.recall = recall.back();
+        scene.false_positive_rate = fp.back();
+        if (row.contains("sync_ms")) scene.sync_ms = known(sync.back());
+        if (row.contains("twin")) scene.twin_ratio = known(ratio.back());
+        CountTargetsMet(target, scene, &counts);
+        for (std::size_t g = 0; g < row["groups"].size(); ++g) {
+          CountTargetsMet(target, scene, &by_group[key(row["groups"], g)]);
+        }
+      }
+      if (rmse.empty() && failed == 0) continue;
+      for (const auto& [group_key, group_counts] : by_group) {
+        const std::string& group = std::get<2>(group_key);
+        group_report += fmt::format("| {} | {} | {} | {} |\n", family, set, group,
+                                    group_counts.Describe(target));
+        groups_json.push_back({{"family", family},
+                               {"set", set},
+                               {"group", group},
+                               {"scenes_meeting", group_counts.ToJson(target)}});
+      }
+      const auto worst = [](const std::vector<double>& v, double none) {
+        return v.empty() ? none : *std::max_element(v.begin(), v.end());
+      };
+      const double worst_rmse = worst(rmse, kNone);
+      const double worst_recall =
+          recall.empty() ? 0.0 : *std::min_element(recall.begin(), recall.end());
+      const double worst_fp = worst(fp, 1.0);
+      const double worst_sync = worst(sync, -1.0), worst_ratio = worst(ratio, -1.0);
+      const bool met = failed == 0 && worst_recall >= target.min_recall &&
+                       worst_fp <= target.max_fp && worst_rmse <= target.max_rmse_mm &&
+                       Median(rmse) <= target.max_median_rmse_mm &&
+                       worst_sync <= target.max_sync_ms && worst_ratio <= target.max_twin_ratio;
+      nlohmann::ordered_json entry = {{"family", family},
+                                      {"set", set},
+                                      {"scenes", rmse.size()},
+                                      {"failed", failed},
+                                      {"rmse_mm_worst", worst_rmse},
+                                      {"rmse_mm_median", Median(rmse)},
+                                      {"recall_worst", worst_recall},
+                                      {"recall_median", Median(recall)},
+                                      {"fp_worst", worst_fp},
+                                      {"fp_median", Median(fp)}};
+      if (!sync.empty()) {
+        entry["sync_ms_worst"] = worst_sync;
+        entry["sync_ms_median"] = Median(sync);
+      }
+      if (!ratio.empty()) entry["twin_ratio_worst"] = worst_ratio;
+      entry["scenes_meeting"] = counts.ToJson(target);
+      entry["target_met"] = met;
+      summary.push_back(entry);
+      const auto ms = [](double v) {
+        return v >= kNone ? std::string("refused") : fmt::format("{:.3f}", v);
+      };
+      report += fmt::format(
+          "| {} | {} | {}{} | {} / {} | {:.1f} / {:.1f} | {:.2f} / {:.2f} | {} | {} | {} | {} |\n",
+          family, set, rmse.size(), failed ? fmt::format(" ({} failed)", failed) : "",
+          Mm(worst_rmse), Mm(Median(rmse)), 100.0 * worst_recall, 100.0 * Median(recall),
+          100.0 * worst_fp, 100.0 * Median(fp),
+          sync.empty() ? std::string("-") : ms(worst_sync) + " / " + ms(Median(sync)),
+          ratio.empty()          ? std::string("-")
+          : worst_ratio >= kNone ? std::string("-")
+                                 : fmt::format("{:.2f}", worst_ratio),
+          counts.Describe(target), met ? "met" : "missed");
+    }
+  }
+  out.report = report + group_report;
+  return out;
+}
+
+// --merge: the scenes of suites already run (each folder's suite.json), summarised as one into
+// a.out; nothing is run. A scene in two of them is taken from the later. Rows written before the
+// groups were counted get theirs from their seed and their folder's look.json.
+int Merge(const SuiteArgs& a) {
+  nlohmann::ordered_json results = nlohmann::ordered_json::array();
+  std::vector<std::string> families, sets;
+  const auto note = [](std::vector<std::string>* seen, const std::string& v) {
+    if (std::find(seen->begin(), seen->end(), v) == seen->end()) seen->push_back(v);
+  };
+  for (const std::string& dir : a.merge) {
+    const fs::path path = fs::path(dir) / "suite.json";
+    std::ifstream file(path);
+    if (!file) throw Error(path.string() + ": cannot read (not a folder eval-suite wrote?)");
+    const auto suite = nlohmann::ordered_json::parse(file, nullptr, false);
+    if (suite.is_discarded() || !suite.contains("scenes") || !suite["scenes"].is_array()) {
+      throw Error(path.string() + ": not a suite's results (no \"scenes\" array)");
+    }
+    for (nlohmann::ordered_json row : suite["scenes"]) {
+      if (!row.contains("axes") || !row.contains("scene") || !row["axes"].contains("family") ||
+          !row["axes"].contains("set") || !row["axes"].contains("seed")) {
+        throw Error(path.string() + ": a scene without its name or axes (family, set, seed)");
+      }
+      const std::string family = row["axes"]["family"], set = row["axes"]["set"];
+      if (!row.contains("groups")) {
+        const int seed = row["axes"]["seed"].get<int>();
+        const SuiteScene scene =
+            DrawSuiteScene(family, set, set == "checking" ? seed - 1000 : seed);
+        std::ifstream look_file(fs::path(dir) / row["scene"].get<std::string>() / "sim" /
+                                "look.json");
+        const auto look = nlohmann::json::parse(look_file, nullptr, false);
+        row["groups"] = SceneGroups(scene, row.value("ball_px", 0.0),
+                                    look.is_discarded() ? std::nullopt : FloorHueOf(look));
+      }
+      const auto same = std::find_if(results.begin(), results.end(),
+                                     [&](const auto& r) { return r["scene"] == row["scene"]; });
+      if (same != results.end()) {
+        spdlog::warn("{}: {} is in an earlier suite too; taking this one", path.string(),
+                     row["scene"].get<std::string>());
+        *same = row;
+        continue;
+      }
+      note(&families, family), note(&sets, set);
+      results.push_back(row);
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec) throw Error(a.out + ": cannot create the folder (" + ec.message() + ")");
+  const Summary summed = Summarize(results, families, sets);
+  std::cout << summed.report << std::flush;
+  const nlohmann::ordered_json out = {{"scenes", results},
+                                      {"summary", summed.summary},
+                                      {"by_group", summed.by_group},
+                                      {"merged_from", a.merge}};
+  std::ofstream json_file(fs::path(a.out) / "suite.json");
+  json_file << out.dump(2) << '\n';
+  std::ofstream md_file(fs::path(a.out) / "suite.md");
+  md_file << "Merged from " << fmt::format("{}", fmt::join(a.merge, ", ")) << "\n" << summed.report;
+  if (!json_file || !md_file) throw Error(a.out + ": cannot write suite.json / suite.md");
+  spdlog::info("{} scene(s) of {} suite(s) summarised; wrote {}/suite.json and suite.md",
+               results.size(), a.merge.size(), a.out);
+  return 0;
+}
+
 int Run(const SuiteArgs& a) {
+  if (!a.merge.empty()) return Merge(a);
   const auto started = std::chrono::steady_clock::now();
   std::error_code ec;
   fs::create_directories(a.out, ec);
@@ -357,133 +562,16 @@ int Run(const SuiteArgs& a) {
     spdlog::debug("scene {}/{} done", index, scenes.size());
   }
 
-  // Per family and set: the worst scene and the median, against the family's target; and the
-  // scenes meeting each target by group (cameras, rate, exposure, ball size and colour, floor).
-  nlohmann::ordered_json summary = nlohmann::ordered_json::array();
-  nlohmann::ordered_json groups_json = nlohmann::ordered_json::array();
-  std::string group_report =
-      "\n| family | set | group | scenes meeting each target |\n| --- | --- | --- | --- |\n";
-  std::string report =
-      "\n| family | set | scenes | RMSE mm worst / median | recall % worst / median | FP % worst / "
-      "median | sync ms worst / median | RMSE / twin's worst | scenes meeting each target | "
-      "target |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for (const auto& family : a.families) {
-    for (const auto& set : sets) {
-      std::vector<double> rmse, recall, fp, sync, ratio;
-      int failed = 0;
-      const SuiteTarget target = TargetOf(family);
-      TargetCounts counts;
-      // Groups in the order of SceneGroups' axes, and by value within an axis ("under" first).
-      using GroupKey = std::tuple<std::size_t, double, std::string>;
-      std::map<GroupKey, TargetCounts> by_group;
-      const auto key = [](const nlohmann::json& groups, std::size_t axis) -> GroupKey {
-        const std::string name = groups[axis].get<std::string>();
-        const auto digit = name.find_first_of("0123456789");
-        const double value = name.rfind("under", 0) == 0  ? -1.0
-                             : digit == std::string::npos ? 0.0
-                                                          : std::atof(name.c_str() + digit);
-        return {axis, value, name};
-      };
-      for (const auto& row : results) {
-        if (row["axes"]["family"] != family || row["axes"]["set"] != set) continue;
-        if (!row.contains("figures")) {
-          ++failed;
-          CountTargetsMet(target, {}, &counts);
-          for (std::size_t g = 0; g < row["groups"].size(); ++g) {
-            CountTargetsMet(target, {}, &by_group[key(row["groups"], g)]);
-          }
-          continue;
-        }
-        // A scene without a measured row has no error to show: it counts as the worst.
-        const double r = Measured(row) ? row["figures"].value("position_rmse_mm", kNone) : kNone;
-        rmse.push_back(r);
-        recall.push_back(row["figures"].value("recall", 0.0));
-        fp.push_back(row["figures"].value("false_positive_rate", 1.0));
-        if (row.contains("sync_ms")) {
-          sync.push_back(row["sync_ms"].is_null() ? kNone : row["sync_ms"].get<double>());
-        }
-        if (row.contains("twin")) {
-          const auto& twin = row["twin"];
-          const double t = twin.contains("figures") && Measured(twin)
-                               ? twin["figures"].value("position_rmse_mm", kNone)
-                               : kNone;
-          ratio.push_back(r >= kNone || t >= kNone || t <= 0.0 ? kNone : r / t);
-        }
-        const auto known = [](double v) { return v >= kNone ? std::nullopt : std::optional(v); };
-        SceneFigures scene;
-        scene.evaluated = true;
-        scene.rmse_mm = known(r);
-        scene.recall = recall.back();
-        scene.false_positive_rate = fp.back();
-        if (row.contains("sync_ms")) scene.sync_ms = known(sync.back());
-        if (row.contains("twin")) scene.twin_ratio = known(ratio.back());
-        CountTargetsMet(target, scene, &counts);
-        for (std::size_t g = 0; g < row["groups"].size(); ++g) {
-          CountTargetsMet(target, scene, &by_group[key(row["groups"], g)]);
-        }
-      }
-      if (rmse.empty() && failed == 0) continue;
-      for (const auto& [group_key, group_counts] : by_group) {
-        const std::string& group = std::get<2>(group_key);
-        group_report += fmt::format("| {} | {} | {} | {} |\n", family, set, group,
-                                    group_counts.Describe(target));
-        groups_json.push_back({{"family", family},
-                               {"set", set},
-                               {"group", group},
-                               {"scenes_meeting", group_counts.ToJson(target)}});
-      }
-      const auto worst = [](const std::vector<double>& v, double none) {
-        return v.empty() ? none : *std::max_element(v.begin(), v.end());
-      };
-      const double worst_rmse = worst(rmse, kNone);
-      const double worst_recall =
-          recall.empty() ? 0.0 : *std::min_element(recall.begin(), recall.end());
-      const double worst_fp = worst(fp, 1.0);
-      const double worst_sync = worst(sync, -1.0), worst_ratio = worst(ratio, -1.0);
-      const bool met = failed == 0 && worst_recall >= target.min_recall &&
-                       worst_fp <= target.max_fp && worst_rmse <= target.max_rmse_mm &&
-                       Median(rmse) <= target.max_median_rmse_mm &&
-                       worst_sync <= target.max_sync_ms && worst_ratio <= target.max_twin_ratio;
-      nlohmann::ordered_json entry = {{"family", family},
-                                      {"set", set},
-                                      {"scenes", rmse.size()},
-                                      {"failed", failed},
-                                      {"rmse_mm_worst", worst_rmse},
-                                      {"rmse_mm_median", Median(rmse)},
-                                      {"recall_worst", worst_recall},
-                                      {"recall_median", Median(recall)},
-                                      {"fp_worst", worst_fp},
-                                      {"fp_median", Median(fp)}};
-      if (!sync.empty()) {
-        entry["sync_ms_worst"] = worst_sync;
-        entry["sync_ms_median"] = Median(sync);
-      }
-      if (!ratio.empty()) entry["twin_ratio_worst"] = worst_ratio;
-      entry["scenes_meeting"] = counts.ToJson(target);
-      entry["target_met"] = met;
-      summary.push_back(entry);
-      const auto ms = [](double v) {
-        return v >= kNone ? std::string("refused") : fmt::format("{:.3f}", v);
-      };
-      report += fmt::format(
-          "| {} | {} | {}{} | {} / {} | {:.1f} / {:.1f} | {:.2f} / {:.2f} | {} | {} | {} | {} |\n",
-          family, set, rmse.size(), failed ? fmt::format(" ({} failed)", failed) : "",
-          Mm(worst_rmse), Mm(Median(rmse)), 100.0 * worst_recall, 100.0 * Median(recall),
-          100.0 * worst_fp, 100.0 * Median(fp),
-          sync.empty() ? std::string("-") : ms(worst_sync) + " / " + ms(Median(sync)),
-          ratio.empty()          ? std::string("-")
-          : worst_ratio >= kNone ? std::string("-")
-                                 : fmt::format("{:.2f}", worst_ratio),
-          counts.Describe(target), met ? "met" : "missed");
-    }
-  }
-  report += group_report;
+  const Summary summed = Summarize(results, a.families, sets);
+  std::string report = summed.report;
   if (a.findable) report += findable_table;
   std::cout << report << std::flush;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  const nlohmann::ordered_json out = {
-      {"scenes", results}, {"summary", summary}, {"by_group", groups_json}, {"seconds", seconds}};
+  const nlohmann::ordered_json out = {{"scenes", results},
+                                      {"summary", summed.summary},
+                                      {"by_group", summed.by_group},
+                                      {"seconds", seconds}};
   std::ofstream json_file(fs::path(a.out) / "suite.json");
   json_file << out.dump(2) << '\n';
   std::ofstream md_file(fs::path(a.out) / "suite.md");
@@ -539,6 +627,10 @@ std::function<int()> AddEvalSuiteCommand(CLI::App& app) {
   cmd->add_option("--track-args", args->track_args,
                   "Extra arguments for `p4track track`, e.g. --track-args=--no-roi")
       ->allow_extra_args(false);
+  cmd->add_option("--merge", args->merge,
+                  "Summarise suites already run (folders with a suite.json) as one into --out, "
+                  "e.g. tuning 1-48 and 49-96 run apart; nothing is run again")
+      ->check(CLI::ExistingDirectory);
   return [args]() { return Run(*args); };
 }
 

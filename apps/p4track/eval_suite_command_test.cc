@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "p4track_test_support.h"
@@ -179,6 +179,59 @@ TEST(EvalSuiteCommand, TheSetsInsideAConfirmedFlightWithNoWholePairBecomeRows) {
   EXPECT_LE(figures["false_positive_rate"].get<double>(), 0.0);
   EXPECT_LE(figures["position_rmse_mm"].get<double>(), 6.5);
   fs::remove_all(out);
+}
+
+// --merge: suites run apart (here two written by hand: sports tuning 1 and 2, then 2 again)
+// summarised as one, nothing run: each scene counted once (the later suite's), its groups from
+// its seed and its look.json; a folder without a suite.json is named.
+TEST(EvalSuiteCommand, SuitesRunApartAreSummarisedAsOne) {
+  const fs::path root = fs::temp_directory_path() / ("p4_merge_" + std::to_string(::getpid()));
+  const auto suite = [&](const std::string& name, int seed, double recall) {
+    const fs::path dir = root / name;
+    const std::string scene = "sports-tuning-" + std::to_string(seed);
+    fs::create_directories(dir / scene / "sim");
+    nlohmann::json row = {{"scene", scene},
+                          {"axes", {{"family", "sports"}, {"set", "tuning"}, {"seed", seed}}},
+                          {"ball_px", 8.0},
+                          {"figures",
+                           {{"position_rmse_mm", 2.0},
+                            {"recall", recall},
+                            {"false_positive_rate", 0.0},
+                            {"measured_rows", 300}}}};
+    std::ofstream(dir / "suite.json") << nlohmann::json{{"scenes", {row}}}.dump();
+    // A red-brown floor under an orange ball.
+    std::ofstream(dir / scene / "sim" / "look.json")
+        << R"({"floor": [0.5, 0.2, 0.11], "ball": [0.98, 0.33, 0.06]})";
+    return dir.string();
+  };
+  const std::string a = suite("a", 1, 0.995), b = suite("b", 2, 0.97), c = suite("c", 2, 1.0);
+  std::string log;
+  ASSERT_EQ(p4::testing::P4track(
+                "eval-suite --out " + (root / "all").string() + " --merge " + a + " " + b + " " + c,
+                &log),
+            0)
+      << log;
+  const auto merged = nlohmann::json::parse(p4::testing::Slurp(root / "all" / "suite.json"));
+  ASSERT_EQ(merged["scenes"].size(), 2u);  // seed 2 once: c's
+  EXPECT_EQ(merged["scenes"][1]["figures"]["recall"].get<double>(), 1.0);
+  const auto& met = merged["summary"][0]["scenes_meeting"];
+  EXPECT_EQ(met["scenes"].get<int>(), 2);
+  EXPECT_EQ(met["all"].get<int>(), 2);
+  const auto& groups = merged["by_group"];
+  const auto floor = std::find_if(groups.begin(), groups.end(), [](const auto& g) {
+    return g["group"] == "floor of the ball's hue";
+  });
+  ASSERT_NE(floor, groups.end()) << groups.dump();
+  EXPECT_EQ((*floor)["scenes_meeting"]["scenes"].get<int>(), 2);
+  EXPECT_NE(log.find("in an earlier suite too"), std::string::npos) << log;
+  // A folder that holds no suite.
+  fs::create_directories(root / "empty");
+  EXPECT_NE(p4::testing::P4track("eval-suite --out " + (root / "x").string() + " --merge " +
+                                     (root / "empty").string(),
+                                 &log),
+            0);
+  EXPECT_NE(log.find((root / "empty" / "suite.json").string()), std::string::npos) << log;
+  fs::remove_all(root);
 }
 
 }  // namespace
