@@ -281,11 +281,13 @@ Summary Summarize(const nlohmann::ordered_json& results, const std::vector<std::
       };
       for (const auto& row : results) {
         if (row["axes"]["family"] != family || row["axes"]["set"] != set) continue;
+        const nlohmann::json groups =
+            row.contains("groups") ? nlohmann::json(row["groups"]) : nlohmann::json::array();
         if (!row.contains("figures")) {
           ++failed;
           CountTargetsMet(target, {}, &counts);
-          for (std::size_t g = 0; g < row["groups"].size(); ++g) {
-            CountTargetsMet(target, {}, &by_group[key(row["groups"], g)]);
+          for (std::size_t g = 0; g < groups.size(); ++g) {
+            CountTargetsMet(target, {}, &by_group[key(groups, g)]);
           }
           continue;
         }
@@ -313,8 +315,8 @@ Summary Summarize(const nlohmann::ordered_json& results, const std::vector<std::
         if (row.contains("sync_ms")) scene.sync_ms = known(sync.back());
         if (row.contains("twin")) scene.twin_ratio = known(ratio.back());
         CountTargetsMet(target, scene, &counts);
-        for (std::size_t g = 0; g < row["groups"].size(); ++g) {
-          CountTargetsMet(target, scene, &by_group[key(row["groups"], g)]);
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+          CountTargetsMet(target, scene, &by_group[key(groups, g)]);
         }
       }
       if (rmse.empty() && failed == 0) continue;
@@ -401,8 +403,12 @@ int Merge(const SuiteArgs& a) {
       const std::string family = row["axes"]["family"], set = row["axes"]["set"];
       if (!row.contains("groups")) {
         const int seed = row["axes"]["seed"].get<int>();
-        const SuiteScene scene =
-            DrawSuiteScene(family, set, set == "checking" ? seed - 1000 : seed);
+        SuiteScene scene;
+        try {
+          scene = DrawSuiteScene(family, set, set == "checking" ? seed - 1000 : seed);
+        } catch (const Error& e) {
+          throw Error(path.string() + ": " + row["scene"].get<std::string>() + ": " + e.what());
+        }
         std::ifstream look_file(fs::path(dir) / row["scene"].get<std::string>() / "sim" /
                                 "look.json");
         const auto look = nlohmann::json::parse(look_file, nullptr, false);

@@ -266,6 +266,9 @@ std::array<bool, 5> Applies(const SuiteTarget& t) {
           t.max_twin_ratio < 1e9};
 }
 
+// The counts in that order.
+std::array<int, 5> Met(const TargetCounts& c) { return {c.recall, c.fp, c.rmse, c.sync, c.twin}; }
+
 }  // namespace
 
 void CountTargetsMet(const SuiteTarget& target, const SceneFigures& scene, TargetCounts* counts) {
@@ -293,7 +296,7 @@ void CountTargetsMet(const SuiteTarget& target, const SceneFigures& scene, Targe
 std::string TargetCounts::Describe(const SuiteTarget& target) const {
   const std::array<bool, 5> applies = Applies(target);
   const std::array<const char*, 5> names = {"recall", "FP", "RMSE", "sync", "twin"};
-  const std::array<int, 5> values = {recall, fp, rmse, sync, twin};
+  const std::array<int, 5> values = Met(*this);
   std::vector<std::string> parts;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (applies[i]) parts.push_back(fmt::format("{} {}", names[i], values[i]));
@@ -306,7 +309,7 @@ nlohmann::ordered_json TargetCounts::ToJson(const SuiteTarget& target) const {
   const std::array<bool, 5> applies = Applies(target);
   const std::array<const char*, 5> names = {"recall", "false_positive_rate", "rmse", "sync",
                                             "twin_ratio"};
-  const std::array<int, 5> values = {recall, fp, rmse, sync, twin};
+  const std::array<int, 5> values = Met(*this);
   nlohmann::ordered_json out = {{"scenes", scenes}};
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (applies[i]) out[names[i]] = values[i];
