@@ -116,6 +116,7 @@ struct Outcome {
   nlohmann::json figures;
   double ball_px = -1.0;
   nlohmann::json look;
+  std::optional<bool> floor_of_balls_hue;  // from the look (FloorHueOf)
   double sync_ms = -1.0;  // the worst camera's clock error (kNone: refused; < 0: in step)
   std::optional<FindableReport> findable;
 };
@@ -203,7 +204,8 @@ Outcome SimulateTrackEvaluate(const SuiteScene& scene, const fs::path& dir,
                 {"lamps", look["lamps"].size()},
                 {"spare_ball", look.contains("spare_ball")},
                 {"drift", look["drift"]}};
-    if (const auto floor_hue = FloorHueOf(look)) out.look["floor_of_balls_hue"] = *floor_hue;
+    out.floor_of_balls_hue = FloorHueOf(look);
+    if (out.floor_of_balls_hue) out.look["floor_of_balls_hue"] = *out.floor_of_balls_hue;
   }
   std::vector<std::string> track = {"track",
                                     "--rig",
@@ -283,37 +285,33 @@ Summary Summarize(const nlohmann::ordered_json& results, const std::vector<std::
         if (row["axes"]["family"] != family || row["axes"]["set"] != set) continue;
         const nlohmann::json groups =
             row.contains("groups") ? nlohmann::json(row["groups"]) : nlohmann::json::array();
+        SceneFigures scene;  // a scene that failed before its figures meets no target
         if (!row.contains("figures")) {
           ++failed;
-          CountTargetsMet(target, {}, &counts);
-          for (std::size_t g = 0; g < groups.size(); ++g) {
-            CountTargetsMet(target, {}, &by_group[key(groups, g)]);
+        } else {
+          // A scene without a measured row has no error to show: it counts as the worst.
+          const double r = Measured(row) ? row["figures"].value("position_rmse_mm", kNone) : kNone;
+          rmse.push_back(r);
+          recall.push_back(row["figures"].value("recall", 0.0));
+          fp.push_back(row["figures"].value("false_positive_rate", 1.0));
+          const auto known = [](double v) { return v >= kNone ? std::nullopt : std::optional(v); };
+          scene.evaluated = true;
+          scene.rmse_mm = known(r);
+          scene.recall = recall.back();
+          scene.false_positive_rate = fp.back();
+          if (row.contains("sync_ms")) {
+            sync.push_back(row["sync_ms"].is_null() ? kNone : row["sync_ms"].get<double>());
+            scene.sync_ms = known(sync.back());
           }
-          continue;
+          if (row.contains("twin")) {
+            const auto& twin = row["twin"];
+            const double t = twin.contains("figures") && Measured(twin)
+                                 ? twin["figures"].value("position_rmse_mm", kNone)
+                                 : kNone;
+            ratio.push_back(r >= kNone || t >= kNone || t <= 0.0 ? kNone : r / t);
+            scene.twin_ratio = known(ratio.back());
+          }
         }
-        // A scene without a measured row has no error to show: it counts as the worst.
-        const double r = Measured(row) ? row["figures"].value("position_rmse_mm", kNone) : kNone;
-        rmse.push_back(r);
-        recall.push_back(row["figures"].value("recall", 0.0));
-        fp.push_back(row["figures"].value("false_positive_rate", 1.0));
-        if (row.contains("sync_ms")) {
-          sync.push_back(row["sync_ms"].is_null() ? kNone : row["sync_ms"].get<double>());
-        }
-        if (row.contains("twin")) {
-          const auto& twin = row["twin"];
-          const double t = twin.contains("figures") && Measured(twin)
-                               ? twin["figures"].value("position_rmse_mm", kNone)
-                               : kNone;
-          ratio.push_back(r >= kNone || t >= kNone || t <= 0.0 ? kNone : r / t);
-        }
-        const auto known = [](double v) { return v >= kNone ? std::nullopt : std::optional(v); };
-        SceneFigures scene;
-        scene.evaluated = true;
-        scene.rmse_mm = known(r);
-        scene.recall = recall.back();
-        scene.false_positive_rate = fp.back();
-        if (row.contains("sync_ms")) scene.sync_ms = known(sync.back());
-        if (row.contains("twin")) scene.twin_ratio = known(ratio.back());
         CountTargetsMet(target, scene, &counts);
         for (std::size_t g = 0; g < groups.size(); ++g) {
           CountTargetsMet(target, scene, &by_group[key(groups, g)]);
@@ -487,10 +485,7 @@ int Run(const SuiteArgs& a) {
     const Outcome outcome = SimulateTrackEvaluate(scene, dir, "", a, {}, false);
     if (outcome.ball_px >= 0.0) row["ball_px"] = std::round(outcome.ball_px * 10.0) / 10.0;
     if (!outcome.look.is_null()) row["look"] = outcome.look;
-    const auto floor_hue = outcome.look.contains("floor_of_balls_hue")
-                               ? std::optional(outcome.look["floor_of_balls_hue"].get<bool>())
-                               : std::nullopt;
-    row["groups"] = SceneGroups(scene, std::max(0.0, outcome.ball_px), floor_hue);
+    row["groups"] = SceneGroups(scene, std::max(0.0, outcome.ball_px), outcome.floor_of_balls_hue);
     if (outcome.findable) {
       const FindableReport& f = *outcome.findable;
       row["findable"] = {{"share", std::round(f.share() * 1e5) / 1e5},
