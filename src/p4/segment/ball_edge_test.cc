@@ -47,71 +47,9 @@ TEST(EdgeCentre, ShadingInsideTheDiscAndALineBeyondItDoNotMoveTheCentre) {
   EXPECT_NEAR(e->cy, cy, 0.15);
 }
 
-// An orange ball lit from above the camera (Lambert, a quarter ambient) over a red-brown floor as
-// dark as its shaded bottom, blurred by a Gaussian of 0.8 px (lens and encoder), chroma averaged
-// over 2x2 pixels: the half-level edge comes early at the bottom.
-I420Image ShadedBall(double cx, double cy, double r) {
-  const int w = 64, h = 48;
-  const double ball[3] = {150.0, 70.0, 200.0}, floor[3] = {52.0, 112.0, 150.0};
-  const double lx = 0.0, ly = -0.6, lz = 0.8;  // towards the light (image y down)
-  std::vector<double> planes[3];
-  for (auto& p : planes) p.assign(static_cast<std::size_t>(w) * h, 0.0);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      for (int k = 0; k < 64; ++k) {
-        const double dx = (x - 0.5 + (k % 8 + 0.5) / 8.0 - cx) / r;
-        const double dy = (y - 0.5 + (k / 8 + 0.5) / 8.0 - cy) / r;
-        const double rr = dx * dx + dy * dy;
-        const double light =
-            rr <= 1.0 ? 0.25 + 0.75 * std::max(0.0, dx * lx + dy * ly + std::sqrt(1.0 - rr) * lz)
-                      : 0.0;
-        for (int c = 0; c < 3; ++c) {
-          const double value = rr > 1.0 ? floor[c]
-                               : c == 0 ? ball[0] * light
-                                        : 128.0 + (ball[c] - 128.0) * light;
-          planes[c][static_cast<std::size_t>(y) * w + x] += value / 64.0;
-        }
-      }
-    }
-  }
-  const double sigma = 0.8;
-  std::vector<double> kernel;
-  for (int i = -3; i <= 3; ++i) kernel.push_back(std::exp(-0.5 * i * i / (sigma * sigma)));
-  double total = 0.0;
-  for (const double k : kernel) total += k;
-  for (auto& plane : planes) {
-    for (int pass = 0; pass < 2; ++pass) {  // rows, then columns
-      std::vector<double> blurred(plane.size(), 0.0);
-      for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-          for (int i = -3; i <= 3; ++i) {
-            const int xx = pass == 0 ? std::clamp(x + i, 0, w - 1) : x;
-            const int yy = pass == 1 ? std::clamp(y + i, 0, h - 1) : y;
-            blurred[static_cast<std::size_t>(y) * w + x] +=
-                kernel[static_cast<std::size_t>(i + 3)] / total *
-                plane[static_cast<std::size_t>(yy) * w + xx];
-          }
-        }
-      }
-      plane.swap(blurred);
-    }
-  }
-  I420Image image(w, h);
-  for (std::size_t i = 0; i < planes[0].size(); ++i) {
-    image.y()[i] = static_cast<uint8_t>(std::lround(planes[0][i]));
-  }
-  for (int y = 0; y < h / 2; ++y) {
-    for (int x = 0; x < w / 2; ++x) {
-      const std::size_t i = static_cast<std::size_t>(2 * y) * w + 2 * x;
-      const auto mean = [&](const std::vector<double>& p) {
-        return static_cast<uint8_t>(std::lround((p[i] + p[i + 1] + p[i + w] + p[i + w + 1]) / 4));
-      };
-      image.u()[y * (w / 2) + x] = mean(planes[1]);
-      image.v()[y * (w / 2) + x] = mean(planes[2]);
-    }
-  }
-  return image;
-}
+// An orange ball lit from above over a red-brown floor as dark as its shaded bottom
+// (testing::ShadedBall's defaults): the half-level edge comes early at the bottom.
+I420Image ShadedBall(double cx, double cy, double r) { return testing::ShadedBall(cx, cy, r); }
 
 TEST(EdgeCentre, TheShadedSideIsFaintAndTheKnownWidthMovesTheCentreBack) {
   const double cx = 30.2, cy = 24.6, r = 4.5;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "p4/core/table.h"
 #include "p4/geometry/epipolar.h"
@@ -52,6 +53,18 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     if (error) *error = "motion_max_gap_s and motion_max_px_s must be positive";
     return false;
   }
+  if (!(outline_short_ratio > 0.0 && outline_short_ratio <= 1.0) ||
+      !(outline_min_ratio >= 0.0 && outline_min_ratio < outline_short_ratio) ||
+      !(outline_shift_margin_px >= 0.0) || !(outline_sided_shift_share >= 0.0) ||
+      !(outline_min_diameter_px >= 0.0)) {
+    if (error) {
+      *error =
+          "outline_short_ratio must be in (0, 1], outline_min_ratio in [0, outline_short_ratio), "
+          "outline_shift_margin_px, outline_sided_shift_share and outline_min_diameter_px at least "
+          "0";
+    }
+    return false;
+  }
   if (!(past_end_min_coast_s >= 0.0)) {
     if (error) *error = "past_end_min_coast_s must be >= 0";
     return false;
@@ -61,8 +74,8 @@ bool FrameSetOptions::IsValid(std::string* error) const {
     return false;
   }
   if (!background.IsValid(error) || !foreground.IsValid(error) || !ball_colour.IsValid(error) ||
-      !edge.IsValid(error) || !shade.IsValid(error) || !streak.IsValid(error) ||
-      !streak_finder.IsValid(error) || !disc_search.IsValid(error)) {
+      !edge.IsValid(error) || !shade.IsValid(error) || !outline.IsValid(error) ||
+      !streak.IsValid(error) || !streak_finder.IsValid(error) || !disc_search.IsValid(error)) {
     return false;
   }
   if (!(split_max_moving >= 0.0 && split_max_moving <= 1.0) || !(split_max_elongation >= 1.0)) {
@@ -800,6 +813,10 @@ FrameSetResult FrameSetTracker::Process(TimeNs t, std::span<const std::optional<
   std::vector<std::pair<int, int>> used;
   std::vector<Hypothesis> hypotheses = Hypotheses(candidates);
   if (options_.whole_fragments && WholeFragments(hypotheses, images, &candidates)) {
+    hypotheses = Hypotheses(candidates);
+  }
+  if (options_.outline_short_views &&
+      OutlineShortViews(hypotheses, predicted, images, &candidates)) {
     hypotheses = Hypotheses(candidates);
   }
   const auto in_step = [&](int c) { return image_time(c) == t; };
@@ -1632,7 +1649,7 @@ void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
 
 Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expected_px) const {
   Eigen::Vector2d centre = view.pixel;
-  if (!options_.shade_correction) return centre;
+  if (!options_.shade_correction || view.outlined) return centre;
   Eigen::Vector2d faint = view.faint;
   if (faint.isZero() && !view.streak && !view.by_coverage) {
     faint_votes_[view.camera].Agreed(options_.shade, faint.data());
@@ -1775,6 +1792,69 @@ std::vector<FrameSetTracker::Hypothesis> FrameSetTracker::Hypotheses(
     return score(a) < score(b);
   });
   return out;
+}
+
+bool FrameSetTracker::OutlineShortViews(const std::vector<Hypothesis>& hypotheses,
+                                        const std::optional<Eigen::Vector3d>& predicted,
+                                        std::span<const std::optional<ImageView>> images,
+                                        std::vector<std::vector<Detection>>* candidates) const {
+  std::vector<int> order(hypotheses.size());
+  std::iota(order.begin(), order.end(), 0);
+  if (predicted) {
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return (hypotheses[a].estimate.point - *predicted).squaredNorm() <
+             (hypotheses[b].estimate.point - *predicted).squaredNorm();
+    });
+  }
+  bool changed = false;
+  std::vector<std::pair<int, int>> tried;
+  for (int i : order) {
+    const Hypothesis& h = hypotheses[i];
+    for (const auto& [c, k] : h.members) {
+      if (std::find(tried.begin(), tried.end(), std::make_pair(c, k)) != tried.end()) continue;
+      tried.emplace_back(c, k);
+      Detection& d = (*candidates)[c][k];
+      if (c >= static_cast<int>(images.size()) || !images[c] || d.streak || d.by_coverage ||
+          d.cut || d.in_merged || d.outlined) {
+        continue;
+      }
+      const double expected = ExpectedDiameterPx(rig_.cameras[c], h.estimate.point);
+      const double width = d.edge_width_px > 0.0 ? d.edge_width_px : d.diameter_px;
+      if (!(expected >= options_.outline_min_diameter_px) ||
+          width >= options_.outline_short_ratio * expected ||
+          width < options_.outline_min_ratio * expected) {
+        continue;
+      }
+      double colour[3];
+      if (!segment::ColourAt(*images[c], d.observed.x(), d.observed.y(), colour)) continue;
+      // The faint side, the view's own or its camera's: the cap lies away from it.
+      Eigen::Vector2d faint = d.faint;
+      if (faint.isZero()) faint_votes_[c].Agreed(options_.shade, faint.data());
+      const bool sided = !faint.isZero();
+      const double max_shift =
+          sided ? options_.outline_sided_shift_share * 0.5 * expected +
+                      options_.outline_shift_margin_px
+                : std::max(0.0, 0.5 * (expected - width)) + options_.outline_shift_margin_px;
+      const auto fit = segment::FitOutline(*images[c], d.observed.x(), d.observed.y(),
+                                           0.5 * expected, max_shift, colour, options_.outline);
+      if (!fit) continue;
+      // Toward the faint side only: a pull the other way is the lamp-lit surroundings (a
+      // banner's lettering of the ball's colour above a yellow ball).
+      if (sided && (Eigen::Vector2d(fit->cx, fit->cy) - d.observed).dot(faint.normalized()) <
+                       -options_.outline_shift_margin_px) {
+        continue;
+      }
+      // The view keeps its shift to the set's time (MoveToSetTime).
+      const Eigen::Vector2d shift = d.pixel - d.observed;
+      d.observed = {fit->cx, fit->cy};
+      d.pixel = d.observed + shift;
+      d.diameter_px = 2.0 * fit->radius;  // measured: the hypothesis's size check holds it
+      d.edge_width_px = 0.0;
+      d.outlined = true;
+      changed = true;
+    }
+  }
+  return changed;
 }
 
 bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,

@@ -23,6 +23,7 @@
 #include "p4/segment/background_model.h"
 #include "p4/segment/ball_colour.h"
 #include "p4/segment/ball_edge.h"
+#include "p4/segment/ball_outline.h"
 #include "p4/segment/blob_finder.h"
 #include "p4/segment/color_classes.h"
 #include "p4/segment/foreground_finder.h"
@@ -149,6 +150,27 @@ struct FrameSetOptions {
   bool shade_correction = true;
   segment::ShadeOptions shade;
   segment::EdgeCentreOptions edge;
+  // A view of a hypothesis narrower than outline_short_ratio of the ball's size at its point
+  // (its width across when the edge fit found no disc, else its diameter; not streaks, views
+  // measured by coverage or cut by the image's edge) is measured again by the outline of a disc
+  // of that size (segment/ball_outline.h, FrameSetTracker::OutlineShortViews): a lit cap over a
+  // floor of the ball's hue, whose shaded half the tables and the edge rays lose. Where the fit
+  // holds, its centre is the view's (whole: ShadedCentre leaves it).
+  bool outline_short_views = true;
+  double outline_short_ratio = 0.9;
+  // ...and at least this share of it wide (a lit cap is half the ball or more; a speck is no
+  // outline's guess), where the ball is at least outline_min_diameter_px wide there: the
+  // contrast across a smaller circle (+-across_px) peaks as high for a speck half its size.
+  double outline_min_ratio = 0.35;
+  double outline_min_diameter_px = 8.0;
+  // The outline's centre may lie from the view's by what the view lost on one side (half the
+  // expected width less its own) and this much more (the blur of the cap's edge), px. Where the
+  // view's faint side is known (its edge fit's or its camera's, segment::FaintSideVote), by
+  // outline_sided_shift_share of the expected radius and the margin instead, but not more than
+  // the margin toward the lit side.
+  double outline_shift_margin_px = 1.0;
+  double outline_sided_shift_share = 0.5;
+  segment::OutlineOptions outline;
   // Beyond the paper: a background model per camera; once it is ready the ball is what differs
   // from it with the ball's colour mixed in (ForegroundFinder), and every candidate is measured
   // by its coverage of the pixels (centre at mid-exposure, area whatever the blur). The colour
@@ -391,6 +413,9 @@ struct Detection {
   // edge_diameter_max_elongation: the ball's shaded part lost in a floor of its shade, its lit
   // cap left), px; ShadedCentre measures what that side lost by it. 0: by diameter_px.
   double edge_width_px = 0.0;
+  // Its centre is the outline's of a disc of the ball's size there (OutlineShortViews): no
+  // faint side to move it back along.
+  bool outlined = false;
   // Found outside the window a coasting track's prediction would have searched (roi_max_missed):
   // with 2+ cameras for a new track only, never a measurement of the coasting one (whose grown
   // gate would take a hand or a shirt anywhere in the image).
@@ -567,6 +592,13 @@ class FrameSetTracker {
   // centre and diameter. Not views measured by coverage (their size counts the shaded part),
   // streaks or views cut by the image's edge. Returns whether any view changed (the hypotheses
   // are then stale).
+  // Short views of the hypotheses measured again by the outline of the ball's size at their
+  // point (FrameSetOptions::outline_short_views), nearest the prediction first, each view once.
+  // True if any view changed.
+  bool OutlineShortViews(const std::vector<Hypothesis>& hypotheses,
+                         const std::optional<Eigen::Vector3d>& predicted,
+                         std::span<const std::optional<ImageView>> images,
+                         std::vector<std::vector<Detection>>* candidates) const;
   bool WholeFragments(const std::vector<Hypothesis>& hypotheses,
                       std::span<const std::optional<ImageView>> images,
                       std::vector<std::vector<Detection>>* candidates) const;

@@ -566,12 +566,37 @@ sim::SceneOptions ShadedOverFloor() {
   return scene;
 }
 
-class ShadedOverFloorTest : public RenderedRigTest {
+// A ball beside the table, over the floor in both views of the club cameras (set k).
+Eigen::Vector3d BallOverFloor(int k) {
+  return {-0.6 + 0.05 * k, -1.25, 0.1 + 0.01 * k - 0.0004 * k * k};
+}
+
+// The ball beside the table over the floor (BallOverFloor) in 1280x720 club cameras.
+class OverFloorTest : public RenderedRigTest {
  protected:
-  ShadedOverFloorTest() : RenderedRigTest(ShadedOverFloor(), 1280, 720) {}
-  static Eigen::Vector3d Ball(int k) {
-    return {-0.6 + 0.05 * k, -1.25, 0.1 + 0.01 * k - 0.0004 * k * k};
+  explicit OverFloorTest(const sim::SceneOptions& scene) : RenderedRigTest(scene, 1280, 720) {}
+
+  struct BothViews {
+    int measured = 0;    // sets measured by both views...
+    double worst = 0.0;  // ...and the worst of them, m
+  };
+  // 16 sets at 120 fps through a tracker with these options.
+  BothViews Run(const FrameSetOptions& options) {
+    FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), options);
+    BothViews out;
+    for (int k = 0; k < 16; ++k) {
+      const auto r = tracker.Process(FromSeconds(k / 120.0), Frames(BallOverFloor(k), k));
+      if (!(r.measurement && r.measurement->cameras == 2)) continue;
+      ++out.measured;
+      out.worst = std::max(out.worst, (r.measurement->position - BallOverFloor(k)).norm());
+    }
+    return out;
   }
+};
+
+class ShadedOverFloorTest : public OverFloorTest {
+ protected:
+  ShadedOverFloorTest() : OverFloorTest(ShadedOverFloor()) {}
 };
 
 // Both views' edge fits find the lit cap over the floor, a ball wide and two thirds of it high
@@ -579,27 +604,49 @@ class ShadedOverFloorTest : public RenderedRigTest {
 // width across and their faint side (down) tell how far to move them back, as a disc's would:
 // every set's point within 4 mm (some 2 mm; 7.6-7.8 mm left where they are).
 TEST_F(ShadedOverFloorTest, ALitCapThatIsNoDiscIsMovedBackToItsFaintSide) {
-  FrameSetTracker tracker(rig_, segment::DefaultOrangeBall(), {});
-  double worst = 0.0;
-  int measured = 0;
-  for (int k = 0; k < 16; ++k) {
-    const auto r = tracker.Process(FromSeconds(k / 120.0), Frames(Ball(k), k));
-    if (!(r.measurement && r.measurement->cameras == 2)) continue;
-    ++measured;
-    worst = std::max(worst, (r.measurement->position - Ball(k)).norm());
+  const BothViews run = Run({});
+  EXPECT_GE(run.measured, 12);
+  EXPECT_LT(run.worst, 0.004);
+}
+
+// Lamps straight above, a tenth of the ball's light from all round, and a floor of the ball's
+// hue as bright as the ball at 0.4 of its light: the lit top is brighter than the floor, the
+// bottom darker, and a band across the ball has the floor's colour (sports tuning 69's camera 0).
+sim::SceneOptions BandedOverFloor() {
+  sim::SceneOptions scene = ShadedOverFloor();
+  scene.look.ball_ambient = 0.1;
+  const sim::Rgb& b = scene.look.ball;
+  scene.look.floor = {0.4f * b.r, 0.4f * b.g, 0.4f * b.b};
+  return scene;
+}
+
+class BandedOverFloorTest : public OverFloorTest {
+ protected:
+  BandedOverFloorTest() : OverFloorTest(BandedOverFloor()) {}
+};
+
+// The tables take the lit top of the ball and the edge rays lose their contrast in the band:
+// each view is a cap. The outline of a disc of the size the two views' point expects finds the
+// ball whole: every set within 2 mm (without it, the caps moved back by their lost width: 6 mm).
+TEST_F(BandedOverFloorTest, ALitCapIsMeasuredWholeByTheOutlineOfTheBallsSize) {
+  for (const bool outline : {true, false}) {
+    FrameSetOptions options;
+    options.outline_short_views = outline;
+    const BothViews run = Run(options);
+    SCOPED_TRACE(outline);
+    EXPECT_EQ(run.measured, 16);
+    if (outline) {
+      EXPECT_LT(run.worst, 0.002);  // 0.6 mm
+    } else {
+      EXPECT_GT(run.worst, 0.004);  // 5.9 mm: the caps' centres, moved back by their widths
+    }
   }
-  EXPECT_GE(measured, 12);
-  EXPECT_LT(worst, 0.004);
 }
 
 class OrangeFloorTest : public RenderedRigTest {
  protected:
   OrangeFloorTest() : RenderedRigTest(OrangeFloor()) {}
-
-  // A ball beside the table, over the floor in both views.
-  static Eigen::Vector3d Ball(int k) {
-    return {-0.6 + 0.05 * k, -1.25, 0.1 + 0.01 * k - 0.0004 * k * k};
-  }
+  static Eigen::Vector3d Ball(int k) { return BallOverFloor(k); }
 };
 
 TEST_F(OrangeFloorTest, ABallOverAFloorOfItsColourIsFoundOnTheBackground) {
