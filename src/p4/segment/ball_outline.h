@@ -58,8 +58,8 @@ struct OutlineCentre {
 // the ball is grey, the best centre lies on the search's border or beyond max_shift_px
 // (something beyond it is stronger: a banner's lettering of the ball's colour, a table's edge),
 // the contrast peaks at an end of the radii searched (a speck, a larger blob), too few normals
-// reach min_contrast, or the circle leaves the image. Precondition: options
-// valid.
+// reach min_contrast, or the circle leaves the image (and for max_shift_px under a coarse step:
+// nothing to search). Precondition: options valid.
 std::optional<OutlineCentre> FitOutline(const ImageView& image, double cx, double cy,
                                         double radius_px, double max_shift_px, const double ball[3],
                                         const OutlineOptions& options = {});

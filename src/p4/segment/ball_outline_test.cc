@@ -72,7 +72,7 @@ TEST(Outline, AWhiteDiscBesideTheBallDoesNotPullTheOutline) {
   EXPECT_NEAR(pulled->cx, wx, 0.5);
 }
 
-TEST(Outline, NoOutlineForAGreyBallOrBeyondTheShiftAllowed) {
+TEST(Outline, NoOutlineForAGreyBallASpeckOrBeyondTheShiftAllowed) {
   const double cx = 30.0, cy = 24.0, r = 5.0;
   const I420Image image = Paint(64, 48, [&](double x, double y) { return Disc(x, y, cx, cy, r); });
   double colour[3];
@@ -85,6 +85,10 @@ TEST(Outline, NoOutlineForAGreyBallOrBeyondTheShiftAllowed) {
   // A grey ball has no hue to hold the inside to.
   const double grey[3] = {200.0, 130.0, 126.0};
   EXPECT_FALSE(FitOutline(image.View(), cx, cy, r, 2.0, grey).has_value());
+  // A speck of half the ball's radius: the contrast peaks at the end of the radii searched.
+  const I420Image speck =
+      Paint(64, 48, [&](double x, double y) { return Disc(x, y, cx, cy, 0.5 * r); });
+  EXPECT_FALSE(FitOutline(speck.View(), cx, cy, r, 2.0, colour).has_value());
   // Nothing there: the blue table alone.
   EXPECT_FALSE(FitOutline(image.View(), 10.0, 10.0, r, 2.0, colour).has_value());
 }
