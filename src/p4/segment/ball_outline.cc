@@ -21,7 +21,9 @@ class OutlineScorer {
   OutlineScorer(const ImageView& image, double radius_px, const double ball[3],
                 const OutlineOptions& options)
       : image_(image), radius_(radius_px), options_(options) {
-    hue_ = std::atan2(ball[2] - 128.0, ball[1] - 128.0);
+    const double hue = std::atan2(ball[2] - 128.0, ball[1] - 128.0);
+    hue_u_ = std::cos(hue);
+    hue_v_ = std::sin(hue);
     cos_hue_limit_ = std::cos(options.max_hue_deg * std::numbers::pi / 180.0);
     for (int k = 0; k < options.directions; ++k) {
       const double a = 2.0 * std::numbers::pi * k / options.directions;
@@ -36,7 +38,6 @@ class OutlineScorer {
     Circle out;
     const double r_out = radius + options_.across_px;
     const double r_in = std::max(0.0, radius - options_.across_px);
-    const double hx = std::cos(hue_), hy = std::sin(hue_);
     double sum = 0.0;
     int on = 0;
     int counted = 0;
@@ -51,7 +52,7 @@ class OutlineScorer {
       // The inside sample's hue against the ball's: the cosine of the angle between them.
       const double du = b[1] - 128.0, dv = b[2] - 128.0;
       const double chroma = std::hypot(du, dv);
-      if (!(chroma > 0.0) || (du * hx + dv * hy) / chroma < cos_hue_limit_) continue;
+      if (!(chroma > 0.0) || (du * hue_u_ + dv * hue_v_) / chroma < cos_hue_limit_) continue;
       const double g = ColourDistance(a, b, options_.chroma_weight);
       sum += g;
       if (g >= options_.min_contrast) ++on;
@@ -67,7 +68,7 @@ class OutlineScorer {
   const ImageView& image_;
   double radius_;
   const OutlineOptions& options_;
-  double hue_ = 0.0;
+  double hue_u_ = 0.0, hue_v_ = 0.0;  // the ball's hue: a unit direction in (U, V) about grey
   double cos_hue_limit_ = 0.0;
   std::vector<std::pair<double, double>> normals_;
 };

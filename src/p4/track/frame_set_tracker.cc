@@ -187,6 +187,16 @@ FrameSetTracker::FrameSetTracker(const Rig& rig, const segment::ColorClassSet& c
 
 namespace {
 
+// A view measured again: its centre as its camera saw it, keeping its shift to the set's time
+// (MoveToSetTime), and its diameter; a disc now (its width is its diameter).
+void Remeasure(const Eigen::Vector2d& observed, double diameter_px, Detection* d) {
+  const Eigen::Vector2d shift = d->pixel - d->observed;
+  d->observed = observed;
+  d->pixel = observed + shift;
+  d->diameter_px = diameter_px;
+  d->edge_width_px = 0.0;
+}
+
 double ExpectedDiameterPx(const Camera& camera, const Eigen::Vector3d& point) {
   return SphereDiameterPx(camera, point, table::kBallRadius);
 }
@@ -1647,13 +1657,18 @@ void FrameSetTracker::AgeStaticSpots(int camera, const CameraSearch& search) {
   std::erase_if(spots, [](const StaticSpot& s) { return s.count <= 0; });
 }
 
-Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expected_px) const {
-  Eigen::Vector2d centre = view.pixel;
-  if (!options_.shade_correction || view.outlined) return centre;
+Eigen::Vector2d FrameSetTracker::FaintSide(const Detection& view) const {
   Eigen::Vector2d faint = view.faint;
   if (faint.isZero() && !view.streak && !view.by_coverage) {
     faint_votes_[view.camera].Agreed(options_.shade, faint.data());
   }
+  return faint;
+}
+
+Eigen::Vector2d FrameSetTracker::ShadedCentre(const Detection& view, double expected_px) const {
+  Eigen::Vector2d centre = view.pixel;
+  if (!options_.shade_correction || view.outlined) return centre;
+  const Eigen::Vector2d faint = FaintSide(view);
   const double width = view.edge_width_px > 0.0 ? view.edge_width_px : view.diameter_px;
   segment::UnshadeCentre(width, faint.data(), expected_px, options_.shade, &centre.x(),
                          &centre.y());
@@ -1828,8 +1843,7 @@ bool FrameSetTracker::OutlineShortViews(const std::vector<Hypothesis>& hypothese
       double colour[3];
       if (!segment::ColourAt(*images[c], d.observed.x(), d.observed.y(), colour)) continue;
       // The faint side, the view's own or its camera's: the cap lies away from it.
-      Eigen::Vector2d faint = d.faint;
-      if (faint.isZero()) faint_votes_[c].Agreed(options_.shade, faint.data());
+      const Eigen::Vector2d faint = FaintSide(d);
       const bool sided = !faint.isZero();
       const double max_shift =
           sided ? options_.outline_sided_shift_share * 0.5 * expected +
@@ -1844,12 +1858,8 @@ bool FrameSetTracker::OutlineShortViews(const std::vector<Hypothesis>& hypothese
                        -options_.outline_shift_margin_px) {
         continue;
       }
-      // The view keeps its shift to the set's time (MoveToSetTime).
-      const Eigen::Vector2d shift = d.pixel - d.observed;
-      d.observed = {fit->cx, fit->cy};
-      d.pixel = d.observed + shift;
-      d.diameter_px = 2.0 * fit->radius;  // measured: the hypothesis's size check holds it
-      d.edge_width_px = 0.0;
+      // Its diameter measured: the hypothesis's size check holds it.
+      Remeasure({fit->cx, fit->cy}, 2.0 * fit->radius, &d);
       d.outlined = true;
       changed = true;
     }
@@ -1882,12 +1892,7 @@ bool FrameSetTracker::WholeFragments(const std::vector<Hypothesis>& hypotheses,
       // The ball's own size, not another fragment (a half-hidden ball is no reason here).
       const double ratio = e->minor_diameter / expected;
       if (ratio < 1.0 / options_.max_size_ratio || ratio > options_.max_size_ratio) continue;
-      // The view keeps its shift to the set's time (MoveToSetTime).
-      const Eigen::Vector2d shift = d.pixel - d.observed;
-      d.observed = {e->cx, e->cy};
-      d.pixel = d.observed + shift;
-      d.diameter_px = e->minor_diameter;
-      d.edge_width_px = 0.0;  // a disc now: its width is its diameter
+      Remeasure({e->cx, e->cy}, e->minor_diameter, &d);
       changed = true;
     }
   }

@@ -584,6 +584,10 @@ class FrameSetTracker {
   // takes the side its camera's views agree on (segment::FaintSideVote), unless it is a streak
   // or measured by coverage (whose centre weighs the shaded part as much as the lit one).
   Eigen::Vector2d ShadedCentre(const Detection& view, double expected_px) const;
+  // The side where the view's edge fit came early (Detection::faint), or, where it found none,
+  // the side its camera's views agree on (not for streaks or views measured by coverage); zero
+  // when neither is known.
+  Eigen::Vector2d FaintSide(const Detection& view) const;
   // Every candidate that agrees across views (paper §3.4), best first (most views, then size).
   std::vector<Hypothesis> Hypotheses(const std::vector<std::vector<Detection>>& candidates) const;
   // A fragment's small views measured again by the ball's edge at the size the hypothesis
